@@ -1,0 +1,47 @@
+// scatterlut generator — the airlight table: ln G̃(u, w) on the OpenCL device, then its
+// accuracy measured against the shared quadrature on the host.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "opencl_device.hpp"
+#include "scatterlut/airlight.hpp"
+#include "scatterlut/table.hpp"
+
+namespace scatterlut {
+
+// Domain and resolution of an airlight table. The defaults hold the default scene's
+// accuracy (docs/AIRLIGHT.md gives the measurements behind them).
+struct AirlightPlan {
+    double u_max = 64.0;   // largest σ_t·D·sin γ in the table; beyond it the large-u series
+    double u_scale = 1e-7; // LOG1P warp scale: log spacing in u above ~u_scale
+    double w_min = 1e-3;   // smallest w = π/2 − v in the table; below it the small-w form
+    int n_u = 512;
+    int n_w = 256;
+    Storage storage = Storage::F32;
+};
+
+struct SamplingStats {
+    double max_rel = 0, p99_rel = 0, median_rel = 0;
+    uint64_t points = 0;
+    double worst_u = 0, worst_w = 0; // where max_rel occurs
+};
+
+// A table with the plan's axes and no values yet.
+Table make_airlight_table_layout(const AirlightPlan &plan);
+
+// Integrates every node on the device. progress(done, total) may be empty.
+Table generate_airlight_table(Device &device, const AirlightPlan &plan, const Provenance &provenance,
+                              const std::function<void(double)> &progress = {});
+
+// Relative error of G̃ at `nodes` nodes (all four corners included) against an
+// independent, finer quadrature pass (refine = 3) on the host.
+double measure_airlight_integration(const Table &table, int nodes, uint64_t seed);
+
+// Relative error of interpolated G̃ at `points` uniformly random off-node points (in the
+// unit coordinates of both axes) against quadrature.
+SamplingStats measure_airlight_sampling(const AirlightTable &table, int points, uint64_t seed);
+
+} // namespace scatterlut

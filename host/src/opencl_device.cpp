@@ -1,0 +1,190 @@
+#include "opencl_device.hpp"
+
+#include <algorithm>
+#include <list>
+#include <cctype>
+#include <cstdlib>
+#include <set>
+#include <sstream>
+
+#include "embedded_kernels.hpp"
+
+namespace scatterlut {
+namespace {
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
+std::string trim(std::string s) {
+    while (!s.empty() && (s.back() == '\0' || std::isspace(static_cast<unsigned char>(s.back())))) s.pop_back();
+    return s;
+}
+
+std::string device_type_name(cl_device_type type) {
+    if (type & CL_DEVICE_TYPE_GPU) return "GPU";
+    if (type & CL_DEVICE_TYPE_CPU) return "CPU";
+    if (type & CL_DEVICE_TYPE_ACCELERATOR) return "ACCELERATOR";
+    return "OTHER";
+}
+
+const embedded::EmbeddedFile *find_embedded(const std::string &name) {
+    for (std::size_t i = 0; i < embedded::kFileCount; ++i)
+        if (name == embedded::kFiles[i].name) return &embedded::kFiles[i];
+    return nullptr;
+}
+
+void inline_includes(const std::string &name, std::set<std::string> &seen, std::ostringstream &out) {
+    const embedded::EmbeddedFile *file = find_embedded(name);
+    if (!file) throw DeviceError("internal error: kernel file '" + name + "' is not embedded in this build");
+    if (!seen.insert(name).second) return;
+    std::istringstream in(file->contents);
+    std::string line;
+    int line_number = 0;
+    out << "#line 1 \"" << name << "\"\n";
+    while (std::getline(in, line)) {
+        ++line_number;
+        const auto first = line.find_first_not_of(" \t");
+        if (first != std::string::npos && line.compare(first, 9, "#include ") == 0) {
+            const auto open = line.find('"');
+            const auto close = line.rfind('"');
+            if (open != std::string::npos && close > open) {
+                inline_includes(line.substr(open + 1, close - open - 1), seen, out);
+                out << "#line " << line_number + 1 << " \"" << name << "\"\n";
+                continue;
+            }
+        }
+        out << line << '\n';
+    }
+}
+
+DeviceInfo describe_device(const cl::Platform &platform, const cl::Device &device, int p, int d) {
+    DeviceInfo info;
+    info.platform_index = p;
+    info.device_index = d;
+    info.platform_name = trim(platform.getInfo<CL_PLATFORM_NAME>());
+    info.device_name = trim(device.getInfo<CL_DEVICE_NAME>());
+    info.device_version = trim(device.getInfo<CL_DEVICE_VERSION>());
+    info.driver_version = trim(device.getInfo<CL_DRIVER_VERSION>());
+    info.type = device_type_name(device.getInfo<CL_DEVICE_TYPE>());
+    info.compute_units = device.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
+    const std::string extensions = device.getInfo<CL_DEVICE_EXTENSIONS>();
+    info.fp64 = extensions.find("cl_khr_fp64") != std::string::npos ||
+                device.getInfo<CL_DEVICE_DOUBLE_FP_CONFIG>() != 0;
+    return info;
+}
+
+} // namespace
+
+std::string DeviceInfo::describe() const {
+    return platform_name + " / " + device_name + " (" + device_version + ", driver " + driver_version + ")";
+}
+
+std::string embedded_source(const std::string &name) {
+    std::set<std::string> seen;
+    std::ostringstream out;
+    inline_includes(name, seen, out);
+    return out.str();
+}
+
+std::vector<DeviceInfo> list_devices() {
+    std::vector<DeviceInfo> out;
+    std::vector<cl::Platform> platforms;
+    try {
+        cl::Platform::get(&platforms);
+    } catch (const cl::Error &e) {
+        if (e.err() == CL_PLATFORM_NOT_FOUND_KHR) return out; // no ICD installed
+        throw;
+    }
+    for (std::size_t p = 0; p < platforms.size(); ++p) {
+        std::vector<cl::Device> devices;
+        try {
+            platforms[p].getDevices(CL_DEVICE_TYPE_ALL, &devices);
+        } catch (const cl::Error &) {
+            continue; // a platform without devices
+        }
+        for (std::size_t d = 0; d < devices.size(); ++d)
+            out.push_back(describe_device(platforms[p], devices[d], static_cast<int>(p), static_cast<int>(d)));
+    }
+    return out;
+}
+
+Device::Device(const std::string &selector_in) {
+    std::string selector = selector_in;
+    if (selector.empty()) {
+        if (const char *env = std::getenv("SCATTERLUT_DEVICE")) selector = env;
+    }
+    std::vector<cl::Platform> platforms;
+    try {
+        cl::Platform::get(&platforms);
+    } catch (const cl::Error &) {
+        platforms.clear();
+    }
+    if (platforms.empty())
+        throw DeviceError("no OpenCL platform found: install an OpenCL driver (on Debian: apt-get install pocl-opencl-icd)");
+
+    bool found = false;
+    std::string candidates;
+    for (std::size_t p = 0; p < platforms.size() && !found; ++p) {
+        std::vector<cl::Device> devices;
+        try {
+            platforms[p].getDevices(CL_DEVICE_TYPE_ALL, &devices);
+        } catch (const cl::Error &) {
+            continue;
+        }
+        for (std::size_t d = 0; d < devices.size() && !found; ++d) {
+            DeviceInfo info = describe_device(platforms[p], devices[d], static_cast<int>(p), static_cast<int>(d));
+            candidates += "\n  " + std::to_string(p) + ":" + std::to_string(d) + "  " + info.describe() +
+                          (info.fp64 ? "" : "  [no fp64]");
+            bool match;
+            if (selector.empty()) {
+                match = info.fp64;
+            } else if (selector == std::to_string(p) + ":" + std::to_string(d)) {
+                match = true;
+            } else {
+                match = lower(info.device_name).find(lower(selector)) != std::string::npos ||
+                        lower(info.platform_name).find(lower(selector)) != std::string::npos;
+            }
+            if (!match) continue;
+            if (!info.fp64)
+                throw DeviceError("device " + info.describe() +
+                                  " lacks cl_khr_fp64; scatterlut integrates in double precision. Choose another "
+                                  "device with --device or SCATTERLUT_DEVICE.");
+            info_ = info;
+            device_ = devices[d];
+            found = true;
+        }
+    }
+    if (!found) {
+        throw DeviceError(selector.empty() ? "no OpenCL device with cl_khr_fp64 found; devices:" + candidates
+                                           : "no OpenCL device matches '" + selector + "'; devices:" + candidates);
+    }
+    context_ = cl::Context(device_);
+    queue_ = cl::CommandQueue(context_, device_);
+}
+
+cl::Program &Device::program(const std::string &cl_file) {
+    for (auto &entry : programs_)
+        if (entry.first == cl_file) return entry.second;
+    const std::string source = embedded_source(cl_file);
+    const std::string options = "-cl-std=CL1.2";
+    cl::Program program(context_, source);
+    try {
+        program.build(std::vector<cl::Device>{device_}, options.c_str());
+    } catch (const cl::Error &) {
+        std::string log;
+        try {
+            log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
+        } catch (const cl::Error &) {
+            log = "(no build log available)";
+        }
+        throw DeviceError("OpenCL build of " + cl_file + " failed\n  platform: " + info_.platform_name +
+                          "\n  device:   " + info_.device_name + " (" + info_.device_version + ", driver " +
+                          info_.driver_version + ")\n  options:  " + options + "\n  build log:\n" + log);
+    }
+    programs_.emplace_back(cl_file, std::move(program));
+    return programs_.back().second;
+}
+
+} // namespace scatterlut

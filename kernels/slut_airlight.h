@@ -1,0 +1,320 @@
+/* scatterlut — the airlight function of Sun et al. 2005, written once.
+ *
+ * Compiled as OpenCL C by kernels/airlight_F.cl (table generation) and as C++ by
+ * the host (exact quadrature, eval, validation) and by the runtime library
+ * (radiance from a table). See docs/AIRLIGHT.md for the derivations in full.
+ *
+ *   F(u, v) = ∫_0^v exp(−u tan ξ) dξ,            u ≥ 0, 0 ≤ v ≤ π/2
+ *   G(u, v) = ∫_v^{π/2} exp(−u tan ξ) dξ          (the tail; F(u,v) + G(u,v) = F(u,π/2))
+ *
+ * The table stores the scaled tail, bounded in (0, 1] and free of the e^{−u tan v}
+ * dynamic range, as a function of u and w = π/2 − v (w carries full precision where v
+ * approaches π/2):
+ *
+ *   G̃(u, w) = e^{u cot w} · G(u, π/2 − w) / w
+ *           = (1/w) ∫_0^∞ e^{−u y} / (1 + (τ + y)²) dy,      τ = cot w = tan v.
+ *
+ * Airlight radiance (viewer and point light in the medium; sign convention: γ is the
+ * angle between the view direction and the direction FROM THE VIEWER TO THE LIGHT,
+ * so the light-to-point distance at ray depth x is d(x)² = x² + D² − 2xD cos γ):
+ *
+ *   L = σ_s/(4π) · I0 · ∫_0^s e^{−σ_t (x + d(x))} / d(x)² dx
+ *     = σ_s/(4π) · I0 · 2 e^{−σ_t D} / (D sin γ) · [w2 G̃(u, w2) − e^{−σ_t Δ} w1 G̃(u, w1)]
+ *
+ * with u = σ_t D sin γ, w2 = π/2 − γ/2, w1 = ½ atan2(D sin γ, s − D cos γ) and
+ * Δ = s + d(s) − D ≥ 0 (the extra light path via the ray's far end). Both exponents are
+ * light paths, so nothing overflows (Sun's A0 = 2e^{−σ_t D cos γ}/(D sin γ) does).
+ */
+#ifndef SLUT_AIRLIGHT_H
+#define SLUT_AIRLIGHT_H
+
+#include "slut_compat.h"
+
+/* ---------------------------------------------------------------- quadrature rule */
+
+/* 16-point Gauss–Legendre on [−1, 1]: the positive nodes and their weights. */
+SLUT_CONSTANT double slut_gl16_x[8] = {
+    0.0950125098376374401853, 0.28160355077925891323,  0.458016777657227386342,
+    0.617876244402643748447,  0.755404408355003033895, 0.86563120238783174388,
+    0.944575023073232576078,  0.989400934991649932596};
+SLUT_CONSTANT double slut_gl16_w[8] = {
+    0.189450610455068496285,  0.182603415044923588867,  0.169156519395002538189,
+    0.149595988816576732082,  0.124628971255533872052,  0.0951585116824927848099,
+    0.0622535239386478928628, 0.0271524594117540948518};
+
+/* ------------------------------------------------------ scaled tail by quadrature */
+
+/* ∫_a^b e^{−u y} / (1 + (τ + y)²) dy with 16-point Gauss–Legendre. */
+SLUT_FN double slut_gs_panel(double u, double tau, double a, double b) {
+    double half_len = 0.5 * (b - a), mid = 0.5 * (a + b), sum = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        double dy = half_len * slut_gl16_x[k];
+        double y0 = mid - dy, y1 = mid + dy;
+        double t0 = tau + y0, t1 = tau + y1;
+        sum += slut_gl16_w[k] * (exp(-u * y0) / (1.0 + t0 * t0) + exp(-u * y1) / (1.0 + t1 * t1));
+    }
+    return half_len * sum;
+}
+
+/* w·G̃(u, w) = ∫_0^∞ e^{−u y}/(1 + (τ + y)²) dy, τ = cot w, by composite Gauss–Legendre.
+ *
+ * Panels: [0, y0], then [y, ρ·y] growing geometrically (ρ = 1 + 1/refine; refine = 1 is
+ * the production rule, larger values are the independent check). y0 = ½·min(1/u, |τ + i|):
+ * the first panel sees at most a factor e^{−1/2} of decay and stays half its length away
+ * from the poles of 1/(1 + t²) at t = ±i; a panel [y, ρy] is then at least 1.5y from the
+ * poles for ρ ≤ 2, so every panel lies well inside its Bernstein ellipse (ρ_B ≥ 5.8:
+ * error ≲ ρ_B^{−32}). The exponential varies by e^{−(ρ−1)uy} on a panel: ≤ 1e-13 relative
+ * error for (ρ−1)uy ≤ 10, and panels beyond contribute less than e^{−10} of the total.
+ * Stop once the remainder bound ∫_Y^∞ e^{−uy}/(τ+y)² dy ≤ e^{−uY}/(τ+Y) is below
+ * 1e-17 of the sum. Work: 16·(log_ρ(40/(u·y0)) + 1) evaluations, ~200 at refine = 1.
+ * u = 0 gives w·G̃ = atan(1/τ) = w exactly and is returned as such. */
+SLUT_FN double slut_w_gs_quadrature(double u, double w, double refine) {
+    if (u <= 0.0) return w;
+    double tau = cos(w) / sin(w);
+    double ratio = 1.0 + 1.0 / refine;
+    double y0 = 0.5 * fmin(1.0 / u, sqrt(1.0 + tau * tau)) / refine;
+    double sum = slut_gs_panel(u, tau, 0.0, y0);
+    double y = y0;
+    for (int panel = 0; panel < 4000; ++panel) {
+        double remainder_bound = exp(-u * y) / (tau + y);
+        if (remainder_bound <= 1e-17 * sum) break;
+        double y_next = y * ratio;
+        sum += slut_gs_panel(u, tau, y, y_next);
+        y = y_next;
+    }
+    return sum;
+}
+
+/* G̃(u, w) by quadrature; G̃ ∈ (0, 1]. */
+SLUT_FN double slut_gs_quadrature(double u, double w, double refine) {
+    return slut_w_gs_quadrature(u, w, refine) / w;
+}
+
+/* tan v with full relative precision: directly below π/4, as cot w (w = π/2 − v,
+ * computed without cancellation) above. */
+SLUT_FN double slut_tan_v(double v, double w) { return (v < 0.78) ? tan(v) : cos(w) / sin(w); }
+
+/* F(u, v) = ∫_0^{tan v} e^{−ut}/(1 + t²) dt by composite Gauss–Legendre: panels [0, t0],
+ * then geometric [t, 2t] up to tan v, t0 = ½ min(1/u, 1) (same reasoning as above: the
+ * poles at ±i and the decay length 1/u). Panels past 40/u (e^{−40} of the total) are
+ * skipped. */
+SLUT_FN double slut_F_quadrature(double u, double v) {
+    if (v <= 0.0) return 0.0;
+    if (u <= 0.0) return v;
+    double w = slut_pio2_minus(v);
+    double tan_v = slut_tan_v(v, w);
+    double t_end = fmin(tan_v, 45.0 / u + 1.0);
+    double t0 = 0.5 * fmin(1.0 / u, 1.0);
+    if (t_end <= t0) return slut_gs_panel(u, 0.0, 0.0, t_end);
+    double sum = slut_gs_panel(u, 0.0, 0.0, t0);
+    double t = t0;
+    while (t < t_end) {
+        double t_next = fmin(2.0 * t, t_end);
+        sum += slut_gs_panel(u, 0.0, t, t_next);
+        t = t_next;
+    }
+    return sum;
+}
+
+/* G(u, v) = ∫_v^{π/2} e^{−u tan ξ} dξ = e^{−u tan v}·w·G̃(u, w): 0 where it underflows. */
+SLUT_FN double slut_tail_quadrature(double u, double v) {
+    double w = slut_pio2_minus(v);
+    if (w <= 0.0) return 0.0;
+    double tan_v = slut_tan_v(v, w);
+    return exp(-u * tan_v) * slut_w_gs_quadrature(u, w, 1.0);
+}
+
+/* ------------------------------------------------------------ closed forms of G̃ */
+
+/* e^a E_n(a) for n ≥ 1, a ≥ 0 (E_n the exponential integral), relative error ~1e-15.
+ * a ≥ 1: the continued fraction e^a E_n(a) = 1/(a + n − 1·n/(a + n + 2 − 2(n+1)/(a + n + 4 − …)))
+ * by the modified Lentz method (Numerical Recipes §6.3). a < 1: E_1 by its power series
+ * E_1(a) = −γ_E − ln a − Σ_{k≥1} (−a)^k/(k·k!), then the upward recurrence
+ * E_{m+1}(a) = (e^{−a} − a E_m(a))/m, which loses nothing for a < 1. E_n(0) = 1/(n−1). */
+SLUT_FN double slut_exp_expint(int n, double a) {
+    if (a >= 1.0) {
+        double b = a + (double)n, c = 1.0 / 1e-300, d = 1.0 / b, h = d;
+        for (int i = 1; i < 500; ++i) {
+            double an = -(double)i * ((double)(n - 1) + (double)i);
+            b += 2.0;
+            d = 1.0 / (an * d + b);
+            c = b + an / c;
+            double del = c * d;
+            h *= del;
+            if (fabs(del - 1.0) < 1e-16) break;
+        }
+        return h;
+    }
+    double ea = exp(a);
+    double e_m; /* e^a E_m(a), starting at m = 1 */
+    if (a <= 0.0) {
+        if (n == 1) return SLUT_HUGE_VAL;
+        return 1.0 / (double)(n - 1);
+    }
+    {
+        double sum = 0.0, term = 1.0;
+        for (int k = 1; k < 40; ++k) {
+            term *= -a / (double)k;          /* (−a)^k / k! */
+            sum += term / (double)k;
+            if (fabs(term) < 1e-18) break;
+        }
+        e_m = ea * (-0.57721566490153286061 - log(a) - sum);
+    }
+    for (int m = 1; m < n; ++m) e_m = (1.0 - a * e_m) / (double)m;
+    return e_m;
+}
+
+/* G̃ as w → 0 at fixed a = u·cot w. With y = τz in the integral above,
+ *   G̃ = (tan w / w) ∫_0^∞ e^{−az} / ((1+z)² + tan² w) dz
+ *     = (tan w / w) · [e^a E_2(a) − tan² w · e^a E_4(a) + O(w⁴)],
+ * so the leading term is a function of a alone: the table needs no nodes below w_min.
+ * Truncation error ≤ tan⁴w · e^aE_6(a) ≤ w⁴/5 (≤ 2e-13 at w = 1e-3). */
+SLUT_FN double slut_gs_small_w(double w, double a) {
+    double tw = tan(w);
+    double ratio = (w > 0.0) ? tw / w : 1.0;
+    return ratio * (slut_exp_expint(2, a) - tw * tw * slut_exp_expint(4, a));
+}
+
+/* G̃ for large u (Watson's lemma on ∫_0^∞ e^{−uy} f(y) dy with f(y) = 1/(1 + (τ+y)²)):
+ * f^{(k)}(0) = (−1)^k k! Im[(τ − i)^{−(k+1)}] = (−1)^k k! cos^{k+1} v · sin((k+1) w), so
+ *   G̃ = (1/w) Σ_k (−1)^k k! (sin w)^{k+1} sin((k+1) w) / u^{k+1}      (cos v = sin w)
+ * an asymptotic series whose terms shrink by ≤ (k+1)/u: summed to its smallest term,
+ * relative error ≲ 8!/u^8 ≈ 1e-10 at u = 48. Uniform in w. */
+SLUT_FN double slut_gs_large_u(double u, double w) {
+    double sw = sin(w), x = sw / u, power = x, sum = 0.0, last = SLUT_HUGE_VAL;
+    for (int k = 0; k < 12; ++k) {
+        double term = power * sin((double)(k + 1) * w);      /* k!·(sin w/u)^{k+1}·sin((k+1)w) */
+        if (fabs(term) > last && k > 2) break;               /* asymptotic: stop at the smallest */
+        sum += (k & 1) ? -term : term;
+        last = fabs(term);
+        power *= x * (double)(k + 1);
+    }
+    return sum / w;
+}
+
+/* ------------------------------------------------------------- airlight geometry */
+
+/* Everything the radiance needs from (σ_s, σ_a, I0, D, γ, s), computed from sin γ and
+ * cos γ without cancellation (so a caller holding direction vectors passes them exactly).
+ * kind: 0 finite (use the fields), 1 zero radiance, 2 divergent (the ray passes
+ * through the light: γ = 0 and s ≥ D). */
+typedef struct slut_airlight_geometry {
+    int kind;
+    double scale;      /* σ_s/(4π)·I0·2e^{−σ_t D}/D                                        */
+    double sin_gamma;  /* sin γ, ≥ 1e-300 (exact 0 is nudged; the limits below are finite) */
+    double u;          /* σ_t D sin γ                                                      */
+    double w2, a2;     /* π/2 − γ/2 and u·cot w2 = σ_t D (1 − cos γ): viewer end           */
+    double w1, a1;     /* ½ atan2(D sin γ, s − D cos γ) and u·cot w1 = σ_t (s + d(s) − D cos γ):
+                          the far end                                                       */
+    double far_attenuation; /* e^{−σ_t Δ}, Δ = s + d(s) − D ≥ 0                          */
+    double c;          /* 2σ_t D sin(γ/2): exponent scale of the θ-integrand                */
+    double dv;         /* w2 − w1 = ½ atan2(s sin γ, D − s cos γ): half the angle the ray
+                          segment subtends at the light                                    */
+} slut_airlight_geometry;
+
+SLUT_FN void slut_airlight_setup(double sigma_s, double sigma_a, double intensity, double distance,
+                                 double sin_gamma, double cos_gamma, double length,
+                                 slut_airlight_geometry *g) {
+    double sigma_t = sigma_s + sigma_a;
+    double D = distance, s = length;
+    g->kind = 0;
+    if (!(sigma_s > 0.0) || !(intensity > 0.0) || !(s > 0.0)) { g->kind = 1; return; }
+    if (!(sin_gamma > 0.0) && cos_gamma > 0.0 && s >= D) { g->kind = 2; return; }
+    double sg = fmax(sin_gamma, 1e-300);
+    /* 1 − cos γ and sin²(γ/2) without cancellation on either side. */
+    double one_minus_cos = (cos_gamma > 0.0) ? sg * sg / (1.0 + cos_gamma) : 1.0 - cos_gamma;
+    double sin_half = sqrt(0.5 * one_minus_cos);
+    g->sin_gamma = sg;
+    g->scale = sigma_s * SLUT_INV_4PI * intensity * 2.0 * exp(-sigma_t * D) / D;
+    g->u = sigma_t * D * sg;
+    g->w2 = 0.5 * atan2(sg, -cos_gamma);
+    g->a2 = sigma_t * D * one_minus_cos;
+    g->c = 2.0 * sigma_t * D * sin_half;
+    if (!SLUT_ISFINITE(s)) { /* an infinite ray: the far end is at ξ = π/2 */
+        g->w1 = 0.0;
+        g->a1 = SLUT_HUGE_VAL;
+        g->far_attenuation = 0.0;
+        g->dv = g->w2;
+        return;
+    }
+    /* d(s)² = (s − D)² + 4sD sin²(γ/2); Δ = s + d − D = s + (d² − D²)/(d + D). */
+    double d_far = sqrt((s - D) * (s - D) + 4.0 * s * D * sin_half * sin_half);
+    g->w1 = 0.5 * atan2(D * sg, s - D * cos_gamma);
+    g->a1 = sigma_t * (s + d_far - D * cos_gamma);
+    double delta = s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D);
+    g->far_attenuation = exp(-sigma_t * fmax(delta, 0.0));
+    g->dv = 0.5 * atan2(s * sg, D - s * cos_gamma);
+}
+
+/* ∫_0^{dv} exp(−c sin θ / sin(w2 − θ)) dθ, 0 ≤ dv ≤ w2 ≤ π/2: the bracket of the airlight
+ * with ξ = v2 + θ (A1 (tan ξ − tan v2) = c sin θ / sin(w2 − θ)). The integrand is 1 at
+ * θ = 0, decreasing and log-concave, with an essential singularity at the pole θ = w2.
+ * Panels are placed by the distance δ to the pole (kept exactly, never as w2 − θ):
+ * length ≤ δ/4 (pole outside the Bernstein ellipse, ρ_B ≥ 9.9) and ≤ 4/λ with
+ * λ = c sin w2 / sin² δ the local decay rate. Stops when the log-concave remainder bound
+ * f/λ drops below 1e-17 of the sum. Relative error ~1e-14. */
+SLUT_FN double slut_airlight_theta_integral(double c, double w2, double dv) {
+    if (dv <= 0.0) return 0.0;
+    if (c <= 0.0) return dv;
+    double sin_w2 = sin(w2);
+    double delta = w2;            /* distance from the panel start to the pole */
+    double remaining = dv;        /* distance from the panel start to the end */
+    double sum = 0.0;
+    for (int panel = 0; panel < 20000 && remaining > 0.0; ++panel) {
+        double theta = dv - remaining;
+        double sd = sin(delta);
+        double rate = c * sin_w2 / (sd * sd);
+        double f_start = exp(-c * sin(theta) / sd);
+        if (panel > 0 && f_start <= 1e-17 * sum * rate) break;
+        double h = fmin(remaining, fmin(0.25 * delta, 4.0 / rate));
+        double half_len = 0.5 * h, part = 0.0;
+        for (int k = 0; k < 8; ++k) {
+            for (int side = -1; side <= 1; side += 2) {
+                double x = half_len + (double)side * half_len * slut_gl16_x[k]; /* offset in the panel */
+                double dist = delta - x;                                 /* to the pole */
+                part += slut_gl16_w[k] * exp(-c * sin(theta + x) / sin(dist));
+            }
+        }
+        sum += half_len * part;
+        remaining -= h;
+        delta -= h;
+    }
+    return sum;
+}
+
+/* Exact airlight radiance (W/(m²·sr) for I0 in W/sr, coefficients in 1/m, lengths in m)
+ * by the θ-integral: independent of any table, ~1e-13 relative. */
+SLUT_FN double slut_airlight_exact(const slut_airlight_geometry *g) {
+    if (g->kind == 1) return 0.0;
+    if (g->kind == 2) return SLUT_HUGE_VAL;
+    return g->scale * (slut_airlight_theta_integral(g->c, g->w2, g->dv) / g->sin_gamma);
+}
+
+/* Radiance from two samples of G̃ (at the viewer end and at the far end), falling back to
+ * the θ-integral where the difference would cancel (far-end term > half the viewer-end
+ * term: a short segment, whose integrand varies by at most a factor e and which a few
+ * Gauss panels integrate exactly). gs2 = G̃(u, w2), gs1 = G̃(u, w1); gs1 is unused
+ * when w1 = 0 (an infinite ray). */
+SLUT_FN double slut_airlight_from_gs(const slut_airlight_geometry *g, double gs2, double gs1) {
+    if (g->kind == 1) return 0.0;
+    if (g->kind == 2) return SLUT_HUGE_VAL;
+    double viewer_term = (g->w2 / g->sin_gamma) * gs2;
+    double far_term = (g->w1 > 0.0) ? g->far_attenuation * (g->w1 / g->sin_gamma) * gs1 : 0.0;
+    if (far_term <= 0.5 * viewer_term) return g->scale * (viewer_term - far_term);
+    return g->scale * (slut_airlight_theta_integral(g->c, g->w2, g->dv) / g->sin_gamma);
+}
+
+/* Which representation serves G̃(u, w) for a table covering u ≤ u_max, w ≥ w_min:
+ * SLUT_GS_TABLE (interpolate), SLUT_GS_LARGE_U (slut_gs_large_u), SLUT_GS_SMALL_W
+ * (slut_gs_small_w). Never a clamp: beyond the table the asymptotic forms are exact
+ * to the table's own accuracy (see the error bounds above). */
+#define SLUT_GS_TABLE 0
+#define SLUT_GS_LARGE_U 1
+#define SLUT_GS_SMALL_W 2
+SLUT_FN int slut_gs_regime(double u, double w, double u_max, double w_min) {
+    if (u > u_max) return SLUT_GS_LARGE_U;
+    if (w < w_min) return SLUT_GS_SMALL_W;
+    return SLUT_GS_TABLE;
+}
+
+#endif /* SLUT_AIRLIGHT_H */

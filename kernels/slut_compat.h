@@ -1,0 +1,49 @@
+/* scatterlut — the OpenCL C / C++ common subset.
+ *
+ * Every formula of the project (integrands, axis maps, quadrature rules,
+ * closed forms) is written once in the kernels/ headers and compiled twice: as OpenCL C
+ * by the generator's kernels and as C++ by the host, the validator and the
+ * runtime library. This header hides the few differences:
+ *   - SLUT_FN marks a shared function (static inline in both languages);
+ *   - SLUT_GLOBAL is OpenCL's __global address space, empty in C++;
+ *   - SLUT_ASSERT vanishes on the device.
+ * Rules for shared code: C99 syntax, outputs through pointers (no
+ * references), no templates, no standard library beyond <math.h> functions,
+ * double precision throughout.
+ */
+#ifndef SLUT_COMPAT_H
+#define SLUT_COMPAT_H
+
+#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
+#  ifdef cl_khr_fp64
+#    pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#  endif
+#  define SLUT_FN static inline
+#  define SLUT_GLOBAL __global
+#  define SLUT_CONSTANT __constant
+#  define SLUT_ASSERT(x) ((void)0)
+#  define SLUT_HUGE_VAL ((double)INFINITY)
+#  define SLUT_ISFINITE(x) isfinite(x)
+#else
+#  include <math.h>
+#  include <assert.h>
+#  define SLUT_FN static inline
+#  define SLUT_GLOBAL
+#  define SLUT_CONSTANT static const
+#  define SLUT_ASSERT(x) assert(x)
+#  define SLUT_HUGE_VAL HUGE_VAL
+#  define SLUT_ISFINITE(x) isfinite(x)
+#endif
+
+/* π/2 split so that π/2 − v is exact for v near π/2 (Sterbenz, plus the tail). */
+#define SLUT_PI 3.14159265358979323846
+#define SLUT_PIO2_HI 1.57079632679489655800e+00 /* double nearest π/2 */
+#define SLUT_PIO2_LO 6.12323399573676603587e-17 /* π/2 − SLUT_PIO2_HI */
+#define SLUT_INV_4PI 0.07957747154594766788    /* isotropic phase function, 1/sr */
+
+/* π/2 − v without cancellation for v ∈ [0, π/2]. */
+SLUT_FN double slut_pio2_minus(double v) { return (SLUT_PIO2_HI - v) + SLUT_PIO2_LO; }
+
+SLUT_FN double slut_clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
+
+#endif /* SLUT_COMPAT_H */

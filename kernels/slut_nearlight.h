@@ -1,0 +1,410 @@
+/* scatterlut — the near-light integral (light outside a medium, viewer outside), written once.
+ *
+ * Compiled as OpenCL C by the near-light table kernels and as C++ by the host (exact
+ * evaluation, eval, validation), the tests and the runtime library (closed forms,
+ * parameters from geometry). DESIGN.md §1.2 and §1.3.
+ *
+ * Geometry (DESIGN §1.2). A plane with outward unit normal n bounds the medium (below it).
+ * The view ray enters at O and runs a length s inside; ω = unit vector from O towards the
+ * viewer (so the ray inside is P(x) = O − x ω), μ_e = ω·n > 0. The light sits at
+ * O + l ω_l, μ_l = ω_l·n, g = ω·ω_l. The light-to-point distance is h(x)² = x² + l² + 2 x l g
+ * and the part of the light path inside the medium is k(x) = h(x)·x μ_e/(x μ_e + l μ_l)
+ * (similar triangles: the depth of P(x) is x μ_e, the height of the light l μ_l).
+ *
+ *   L_near = σ_s/(4π) · I0 · ∫_0^s e^{−σ_t (x + k(x))} / h(x)² dx = σ_s/(4π) · I0 · σ_t · N(T, g, r, S)
+ *   N(T, g, r, S) = ∫_0^S exp(−t − ĥ(t)·t/(t + T r)) / ĥ(t)² dt,   ĥ(t)² = t² + T² + 2 t T g
+ *   T = σ_t l,  S = σ_t s (may be +∞),  r = μ_l/μ_e ≥ 0,  t = σ_t x.
+ *   H(T, g, S) = ∫_0^S ĥ^{−2} dt (closed form),  E = N/H ∈ (0, 1] (ĥ^{−2}-weighted mean attenuation).
+ *
+ * Throughout, w = T√(1 − g²) is the distance from the light to the ray's line and
+ * d(t) = t + T g the signed distance along the ray past the foot of that perpendicular, so
+ * ĥ² = d² + w². The peak of 1/ĥ² sits at t* = −T g (inside the ray when g < 0), with
+ * width w; 1/ĥ² has its poles at t* ± i w, at distance exactly ĥ(t) from a real t.
+ */
+#ifndef SLUT_NEARLIGHT_H
+#define SLUT_NEARLIGHT_H
+
+#include "slut_compat.h"
+#include "slut_airlight.h" /* slut_gl16_x / slut_gl16_w: the project's 16-point Gauss–Legendre rule */
+
+/* ------------------------------------------------------------------ small helpers */
+
+/* √(1 − g²) without cancellation as |g| → 1 (1 − |g| is exact for |g| ≥ ½, Sterbenz). */
+SLUT_FN double slut_nl_sin_from_cos(double g) {
+    double a = fabs(g);
+    return (a >= 1.0) ? 0.0 : sqrt((1.0 - a) * (1.0 + a));
+}
+
+/* atan(x)/x for x ≥ 0 (1 at x = 0; atan returns tiny x exactly, so no series is needed). */
+SLUT_FN double slut_nl_atanc(double x) { return (x == 0.0) ? 1.0 : atan(x) / x; }
+
+/* ∫ ĥ^{−2} dt over a segment of the ray of length len (≥ 0, may be +∞) that starts at a point
+ * with ĥ² = hh2 and offset d = t + T g, w = T√(1 − g²) (all lengths in any one unit).
+ *
+ * Derivation: with the light at the origin, P(t) = P0 + t e (|P0| = T, P0·e = T g), the
+ * angle φ subtended at the light obeys dφ = w dt/ĥ², and between the segment ends
+ * |P(a) × P(a+len)| = len·w, P(a)·P(a+len) = ĥ(a)² + len·d(a). Hence
+ *   ∫ = Δφ/w,  Δφ = atan2(len·w, hh2 + len·d)      (len = ∞: Δφ = atan2(w, d)),
+ * evaluated as (len/den)·atanc(len·w/den) while the angle is below π/2 (den > 0): no
+ * division by w, so the limits w → 0 (g → ±1) are exact: len/(ĥ(a)(ĥ(a) + len·sign)).
+ * Above π/2 the angle is ≥ π/2 and (π − atan(len·w/|den|))/w has no cancellation; it is
+ * +∞ at w = 0 (the segment runs through the light: g = −1, S ≥ T).
+ * Citation: elementary; the angle substitution of Sun et al. 2005 (the airlight F, §1.1). */
+SLUT_FN double slut_nl_inv_square_integral(double len, double hh2, double d, double w) {
+    if (!(len > 0.0)) return 0.0;
+    if (len > 1e300) {
+        if (d > 0.0) return slut_nl_atanc(w / d) / d;
+        if (!(w > 0.0)) return SLUT_HUGE_VAL;
+        if (d == 0.0) return 0.5 * SLUT_PI / w;
+        return (SLUT_PI - atan(w / (-d))) / w;
+    }
+    double den = hh2 + len * d;
+    if (den > 0.0) return slut_nl_atanc(len * w / den) * (len / den);
+    if (!(w > 0.0)) return SLUT_HUGE_VAL;
+    if (den == 0.0) return 0.5 * SLUT_PI / w;
+    return (SLUT_PI - atan(len * w / (-den))) / w;
+}
+
+/* Range checks shared by the entry points: rounding at the edges is tolerated (g is clamped
+ * to [−1, 1]), real violations (NaN, negative T, r or S, |g| > 1 beyond rounding) are
+ * flagged by SLUT_ASSERT on the host and vanish on the device. */
+SLUT_FN double slut_nl_checked_g(double T, double g, double r, double S) {
+    SLUT_ASSERT(T >= 0.0 && r >= 0.0 && S >= 0.0);
+    SLUT_ASSERT(g >= -1.0 - 1e-12 && g <= 1.0 + 1e-12);
+    (void)T; (void)r; (void)S;
+    return slut_clamp(g, -1.0, 1.0);
+}
+
+/* ------------------------------------------------------------------ H (closed form) */
+
+/* T·H(T, g, S) = ∫_0^{S/T} (τ² + 2τg + 1)^{−1} dτ: H in units of 1/T, a function of (g, S/T)
+ * only. Bounded for T → 0 and T → ∞ (H itself overflows or underflows there). */
+SLUT_FN double slut_nl_H_scaled(double g, double S_over_T) {
+    return slut_nl_inv_square_integral(S_over_T, 1.0, g, slut_nl_sin_from_cos(g));
+}
+
+/* H(T, g, S) = ∫_0^S ĥ^{−2} dt
+ *            = atan2(S√(1−g²), T + S g)/(T√(1−g²))       (DESIGN §1.2, in angle-difference form)
+ * Limits: S/(T(S+T)) at g = 1; S/(T(T−S)) at g = −1, S < T; +∞ at g = −1, S ≥ T;
+ * acos(g)/(T√(1−g²)) at S = ∞; 0 at S = 0; +∞ at T = 0 (S > 0). No cancellation anywhere:
+ * see slut_nl_inv_square_integral. S may be +∞ (anything above 1e300 counts as ∞). */
+SLUT_FN double slut_nl_H(double T, double g, double S) {
+    g = slut_nl_checked_g(T, g, 0.0, S);
+    if (!(S > 0.0)) return 0.0;
+    if (!(T > 0.0)) return SLUT_HUGE_VAL;
+    double S_over_T = (S > 1e300) ? SLUT_HUGE_VAL : S / T;
+    return slut_nl_H_scaled(g, S_over_T) / T;
+}
+
+/* ------------------------------------------------------------------ E and N by quadrature */
+
+#define SLUT_NL_MAX_LANES 16      /* r values sharing one (T, g, S) panel mesh            */
+#define SLUT_NL_MAX_PANELS 4096   /* safety cap: in-domain calls use ≤ 40 panels, absurd
+                                     inputs (r = 1e-300, T = 700) ~300                     */
+#define SLUT_NL_EFOLDS 12.0       /* max e-folds of the integrand's exponent per panel    */
+#define SLUT_NL_ELLIPSE 2.0       /* min (dist(a) + dist(b))/(b − a) for every singularity */
+#define SLUT_NL_TAIL_EPS 1e-16    /* stop once the remainder bound is below this × sum     */
+
+/* The quadrature works in units of T: τ = t/T, δ = τ + g, η = ĥ/T = √(δ² + 1 − g²), so
+ *   T·N = ∫_0^{S/T} exp(−T (τ + η τ/(τ + r))) / η² dτ,   T·H = ∫_0^{S/T} η^{−2} dτ.
+ * Every length of the mesh is O(1)-scaled whatever T is (T = 1e-300 or 1e300 neither
+ * underflows η² nor overflows T²); T appears only as the exponent's scale. The layer sits
+ * at τ ~ r, the peak at τ* = −g with width √(1 − g²), the poles of 1/η² at −g ± i√(1−g²). */
+
+/* q(τ) = τ/(τ + r): the fraction of the light path inside the medium. r = 0 gives q = 1
+ * (for τ > 0; τ = 0 is never a node), r = ∞ gives q = 0. */
+SLUT_FN double slut_nl_q(double tau, double r) { return (r > 0.0) ? tau / (tau + r) : 1.0; }
+
+/* r/(τ + r)² = dq/dτ: the layer's share of the exponent's slope, divided by Tη (0 for r = 0, ∞). */
+SLUT_FN double slut_nl_layer_slope(double tau, double r) {
+    if (!(r > 0.0) || r > 1e300) return 0.0;
+    return (r / (tau + r)) / (tau + r);
+}
+
+/* Length h of the next Gauss–Legendre panel [τ, τ + h] (16 points), in units of T;
+ * dl = δ(τ) = τ + g, eta = η(τ), r_pole = the smallest r whose layer still matters,
+ * k_rate = max over the lanes of r/(τ + r)².
+ *
+ * The integrand exp(−T φ(τ))/η², φ = τ + η q, is analytic except at the poles −g ± i√(1−g²)
+ * of 1/η² (also branch points of η) and the essential singularity of e^{−Tηq} at τ = −r.
+ * Three rules, all evaluated in closed form at the panel start, each valid over the panel:
+ *  1. Bernstein ellipse: for a singularity at distances δ_a, δ_b from the ends,
+ *     ρ + 1/ρ = 2 (δ_a + δ_b)/h; require (δ_a + δ_b)/h ≥ A = SLUT_NL_ELLIPSE (ρ ≥ 3.7:
+ *     16-point GL error ≲ ρ^{−32} ~ 1e-17 of the panel, measured 2e-17 on 1/(x+δ)² and on a
+ *     Lorentzian at A = 2). For the poles of 1/η² the distance from a real τ is exactly
+ *     η(τ), η(τ + h)² = η² + 2hδ + h², and η + η(τ + h) = A h solves to
+ *     h = 2 (A η + δ)/(A² − 1): panels of ~√(1−g²) across the peak, geometric growth away
+ *     from it. For −r: distances τ + r, τ + h + r give h = 2 (τ + r)/(A − 1).
+ *  2. Decay: |φ'| = |1 + η' q + η r/(τ+r)²| ≤ 2 + (η(τ) + h) k, k = max over lanes of
+ *     r/(τ + r)² at the panel start (η is 1-Lipschitz, r/(τ+r)² decreasing). The layer
+ *     term is counted twice: it comes from the essential singularity at −r, whose
+ *     continuation off the real axis grows faster than an exponential of the same slope
+ *     (Bernstein: on a panel of length ~(τ + r) the ellipse sees e^{Tηr/(z+r)} at about
+ *     twice the real-axis e-folds). Require T h (2 + 2(η + h) k) ≤ L = SLUT_NL_EFOLDS, the
+ *     root of a quadratic in h. 16-point GL integrates e^{−λx} over L e-folds to ≤ 1e-16
+ *     relative for L ≤ 20 (measured). Counting the layer once left errors up to 4e-12;
+ *     twice, ≤ 3e-14 against a 3× finer mesh on 40000 random points.
+ *     In the boundary layer (τ ≲ r, T large) this rule sets the panels: ~2T/L panels of
+ *     ~L r/(2T) — the mesh a panel variable u = t/(t + T r) would give (e^{−Tηu}, rate Tη),
+ *     without a change of variable per lane, so lanes with different r share it.
+ * refine > 1 shrinks every panel (A → 1 + (A − 1)·refine, L → L/refine): an independent
+ * finer mesh for self-checks. */
+SLUT_FN double slut_nl_panel_length(double tau, double dl, double eta, double r_pole, double k_rate,
+                                    double T, double refine) {
+    double A = 1.0 + (SLUT_NL_ELLIPSE - 1.0) * refine;
+    double L = SLUT_NL_EFOLDS / (refine * T); /* e-folds per unit τ */
+    double h = 2.0 * (A * eta + dl) / (A * A - 1.0);
+    if (r_pole > 0.0 && r_pole <= 1e300) h = fmin(h, 2.0 * (tau + r_pole) / (A - 1.0));
+    /* h (B + 2kh) = L, B = 2 + 2ηk; the root written so that nothing overflows for r → 0
+     * (k ~ 1/r): k/B ≤ 1/(2η). */
+    double B = 2.0 + 2.0 * eta * k_rate;
+    return fmin(h, (2.0 * L / B) / (1.0 + sqrt(1.0 + (8.0 * L / B) * (k_rate / B))));
+}
+
+/* E(T, g, r_j, S) for up to SLUT_NL_MAX_LANES values r_j sharing one panel mesh; returns the
+ * number of quadrature nodes (each node: one sqrt and divide shared by the lanes, then one
+ * divide and one exp per lane). E_out[j] ∈ [0, 1]; N = E·H.
+ *
+ * Derivation. E = N/H = Σ_n [W_n/(η_n² T·H)] e^{−Tφ_j(τ_n)} with the panels in τ units
+ * (slut_nl_panel_length) and T·H = slut_nl_H_scaled: the weights in brackets form a
+ * probability measure, so E is computed directly, never as a ratio of two under/overflowed
+ * numbers. The march starts at τ = 0 and runs to S/T (or ∞).
+ * Near the peak (g < 0, τ ≥ ½|g|) it carries δ = τ − τ* exactly and derives τ from it,
+ * elsewhere it carries τ: the layer needs τ (and q) to full relative precision, the peak
+ * needs δ to precision relative to its width √(1−g²).
+ *
+ * Stopping (at each panel start τ). The attenuation a(τ') = e^{−T(τ' + η(τ') q(τ'))} never
+ * increases: q is increasing, and with q0 = q(τ) the exponent τ' + η(τ') q0 has slope
+ * 1 + q0 η' ≥ 1 − q0 ≥ 0 (η is 1-Lipschitz). So for τ' ≥ τ, a(τ') ≤ a(τ) e^{−T(1−q0)(τ'−τ)}
+ * and the remainder of lane j is at most
+ *   R_j = a_j(τ) · min(∫_τ^{S/T} η^{−2}, 1/(T (1 − q0) η_min²)),  η_min = min of η on [τ, S/T]
+ * (a bound, not an estimate); the march stops once R_j ≤ SLUT_NL_TAIL_EPS × (sum so far)
+ * for every lane. A peak or layer still ahead keeps a_j(τ)·∫η^{−2} large unless the
+ * attenuation already makes it negligible, so nothing that matters can be skipped.
+ *
+ * Special cases: S = 0: E = e^{−T} for r = 0 (the light path is the whole ĥ) and 1 for r > 0;
+ * T = 0: E = 1; g = −1 with S ≥ T (the ray runs through the light; N and H diverge): the
+ * weight concentrates at t = T where ĥ = 0, so E = e^{−T}.
+ * Citation: DESIGN.md §1.2; panel rules as in POCL-NOTES.md ("near-light integral"). */
+SLUT_FN int slut_nl_E_lanes(double T, double g, double S, const double *r, int lanes, double *E_out,
+                            double refine) {
+    double rr[SLUT_NL_MAX_LANES], sum[SLUT_NL_MAX_LANES];
+    int j;
+    SLUT_ASSERT(lanes >= 1 && lanes <= SLUT_NL_MAX_LANES);
+    if (lanes > SLUT_NL_MAX_LANES) lanes = SLUT_NL_MAX_LANES;
+    g = slut_nl_checked_g(T, g, 0.0, S);
+    double sg = slut_nl_sin_from_cos(g);
+    double tau_end = (S > 1e300 || !(T > 0.0)) ? SLUT_HUGE_VAL : S / T;
+    if (!(tau_end > 0.0) || !(T > 0.0) || (sg == 0.0 && g < 0.0 && S >= T)) {
+        for (j = 0; j < lanes; ++j) {
+            SLUT_ASSERT(r[j] >= 0.0);
+            if (!(T > 0.0)) E_out[j] = 1.0;
+            else if (!(tau_end > 0.0)) E_out[j] = (r[j] > 0.0) ? 1.0 : exp(-T); /* S → 0 (S/T may underflow) */
+            else E_out[j] = exp(-T);
+        }
+        return 0;
+    }
+    int finite_S = !(tau_end > 1e300);
+    /* Weights are normalised by T·H: they sum to 1 over [0, S/T], so the sums are E itself
+     * and cannot underflow for tiny S (where T·H ~ S/T). */
+    double inv_H = 1.0 / slut_nl_H_scaled(g, finite_S ? tau_end : SLUT_HUGE_VAL);
+    double sg2 = sg * sg, half_peak = -0.5 * g;
+    for (j = 0; j < lanes; ++j) {
+        SLUT_ASSERT(r[j] >= 0.0);
+        rr[j] = (r[j] < 1e300) ? r[j] : SLUT_HUGE_VAL;
+        sum[j] = 0.0;
+    }
+    double tau = 0.0, dl = g;        /* march state: τ and δ = τ + g (one of them exact) */
+    int carry_d = 0;                 /* 1 once the march carries δ (near the peak) */
+    double d_end = tau_end + g;      /* δ at τ = S/T (S finite) */
+    int nodes = 0;
+    for (int panel = 0; panel < SLUT_NL_MAX_PANELS; ++panel) {
+        if (!carry_d && g < 0.0 && tau >= half_peak) { carry_d = 1; }
+        double eta2 = dl * dl + sg2, eta = sqrt(eta2);
+        /* Remainder bound, normalised like the sums. */
+        if (panel > 0) {
+            double d_min = (dl >= 0.0) ? dl : ((finite_S && d_end < 0.0) ? d_end : 0.0); /* η_min's δ */
+            double eta_min2 = d_min * d_min + sg2;
+            double rest = inv_H * slut_nl_inv_square_integral(finite_S ? tau_end - tau : SLUT_HUGE_VAL, eta2, dl, sg);
+            int done = 1;
+            for (j = 0; j < lanes; ++j) {
+                double q0 = slut_nl_q(tau, rr[j]);
+                double rest2 = (q0 < 1.0 && eta_min2 > 0.0) ? inv_H / (T * (1.0 - q0) * eta_min2) : SLUT_HUGE_VAL;
+                if (exp(-T * (tau + eta * q0)) * fmin(rest, rest2) > SLUT_NL_TAIL_EPS * sum[j]) done = 0;
+            }
+            if (done) break;
+        }
+        /* Layer slope (max over lanes) and the nearest layer singularity −r that still matters:
+         * on [τ, τ + h] the layer changes the exponent by Tηr/(τ'+r) ≤ T r·max(η(τ)/(τ+r), 1);
+         * below 1e-17 it changes no double and its pole needs no rule (else r = 1e-300 would
+         * cost ~700 geometric panels). */
+        double k_rate = 0.0, r_pole = SLUT_HUGE_VAL;
+        for (j = 0; j < lanes; ++j) {
+            k_rate = fmax(k_rate, slut_nl_layer_slope(tau, rr[j]));
+            if (rr[j] > 0.0 && rr[j] < r_pole && T * rr[j] * fmax(eta / (tau + rr[j]), 1.0) > 1e-17) r_pole = rr[j];
+        }
+        double h = slut_nl_panel_length(tau, dl, eta, r_pole, k_rate, T, refine);
+        SLUT_ASSERT(h > 0.0);
+        if (!(h > 0.0)) break; /* cannot happen (every rule is > 0 for η > 0); never loop on it */
+        int last = 0;
+        if (finite_S) {
+            double remaining = carry_d ? d_end - dl : tau_end - tau;
+            if (h >= remaining) { h = remaining; last = 1; }
+        }
+        double half_len = 0.5 * h; /* not "half": a type name in OpenCL C */
+        for (int k = 0; k < 8; ++k) {
+            for (int side = -1; side <= 1; side += 2) {
+                double off = half_len + (double)side * half_len * slut_gl16_x[k];
+                double tn = carry_d ? (dl + off) - g : tau + off;
+                double dn = carry_d ? dl + off : tn + g;
+                double en2 = dn * dn + sg2, en = sqrt(en2);
+                double base = half_len * slut_gl16_w[k] * inv_H / en2;
+                for (j = 0; j < lanes; ++j) sum[j] += base * exp(-T * (tn + en * slut_nl_q(tn, rr[j])));
+                ++nodes;
+            }
+        }
+        if (last) break;
+        if (carry_d) { dl += h; tau = dl - g; }
+        else { tau += h; dl = tau + g; }
+    }
+    for (j = 0; j < lanes; ++j) E_out[j] = fmin(sum[j], 1.0);
+    return nodes;
+}
+
+/* E(T, g, r, S) = N/H ∈ (0, 1]: see slut_nl_E_lanes. Contract: 1e-10 relative; measured
+ * ≤ 2e-14 against a Boost.Math reference on 20000 random points of T ∈ [1e-3, 100],
+ * g ∈ [−0.999999, 1], r ∈ {0} ∪ [1e-6, 1e4], S ∈ {∞} ∪ [1e-6, 100]
+ * (tests/test_nearlight_math.cpp). ~115 nodes per call on average, ≤ 550 there. */
+SLUT_FN double slut_nl_E(double T, double g, double r, double S) {
+    double E;
+    slut_nl_E_lanes(T, g, S, &r, 1, &E, 1.0);
+    return E;
+}
+
+/* N(T, g, r, S) = E·H (DESIGN §1.2). +∞ where H diverges (T = 0, or g = −1 with S ≥ T). */
+SLUT_FN double slut_nl_N(double T, double g, double r, double S) {
+    double H = slut_nl_H(T, g, S);
+    if (!(H > 0.0)) return 0.0;
+    if (!SLUT_ISFINITE(H)) return SLUT_HUGE_VAL;
+    return slut_nl_E(T, g, r, S) * H;
+}
+
+/* ------------------------------------------------------------------ parameters from geometry */
+
+#define SLUT_NL_OK 0            /* parameters valid */
+#define SLUT_NL_LIGHT_BELOW 1   /* μ_l < 0: no direct light reaches the medium: radiance 0 */
+#define SLUT_NL_VIEWER_BELOW 2  /* μ_e ≤ 0: the viewer does not see the medium: invalid input */
+
+typedef struct slut_nl_params {
+    int kind;         /* SLUT_NL_*                                                      */
+    double T;         /* σ_t l (optical distance entry point–light)                     */
+    double g;         /* ω·ω_l                                                          */
+    double r;         /* μ_l/μ_e                                                        */
+    double S;         /* σ_t s (+∞ for a thick medium)                                  */
+    double distance_m;/* l, m                                                           */
+    double S_over_T;  /* s/l (+∞ for a thick medium): H·T depends on (g, s/l) only      */
+    double mu_e, mu_l;
+} slut_nl_params;
+
+/* (T, g, r, S) from a geometry in physical units (DESIGN §1.2).
+ *   normal:       outward unit normal n of the surface (the medium is below);
+ *   eye_dir:      unit vector ω from the entry point O towards the viewer (not into the medium);
+ *   light_rel_m:  light position minus O, m;
+ *   sigma_t_per_m: extinction σ_t, 1/m;  length_m: path s inside the medium, m (+∞ = thick).
+ * T = σ_t |light_rel|, ω_l = light_rel/l, g = ω·ω_l, r = μ_l/μ_e, S = σ_t s.
+ * Sign convention: ĥ² = t² + T² + 2tTg because the point at depth x is O − xω, so
+ * P − light = −(x ω + l ω_l). A light in the plane (μ_l = 0, rounding tolerated down to
+ * −1e-15) is r = 0 (its whole path runs inside, DESIGN's first special case); only a light
+ * strictly below the plane gives SLUT_NL_LIGHT_BELOW. */
+SLUT_FN void slut_nl_params_from_geometry(const double *normal, const double *eye_dir,
+                                          const double *light_rel_m, double sigma_t_per_m,
+                                          double length_m, slut_nl_params *p) {
+    double l = sqrt(light_rel_m[0] * light_rel_m[0] + light_rel_m[1] * light_rel_m[1] +
+                    light_rel_m[2] * light_rel_m[2]);
+    double mu_e = eye_dir[0] * normal[0] + eye_dir[1] * normal[1] + eye_dir[2] * normal[2];
+    double n_dot_l = light_rel_m[0] * normal[0] + light_rel_m[1] * normal[1] + light_rel_m[2] * normal[2];
+    double e_dot_l = light_rel_m[0] * eye_dir[0] + light_rel_m[1] * eye_dir[1] + light_rel_m[2] * eye_dir[2];
+    SLUT_ASSERT(sigma_t_per_m >= 0.0 && length_m >= 0.0);
+    p->kind = SLUT_NL_OK;
+    p->distance_m = l;
+    p->mu_e = mu_e;
+    p->mu_l = (l > 0.0) ? n_dot_l / l : 0.0;
+    p->g = (l > 0.0) ? slut_clamp(e_dot_l / l, -1.0, 1.0) : 0.0;
+    p->T = sigma_t_per_m * l;
+    p->S = (length_m > 1e300) ? ((sigma_t_per_m > 0.0) ? SLUT_HUGE_VAL : 0.0) : sigma_t_per_m * length_m;
+    p->S_over_T = (length_m > 1e300) ? SLUT_HUGE_VAL : ((l > 0.0) ? length_m / l : SLUT_HUGE_VAL);
+    p->r = 0.0;
+    if (!(mu_e > 0.0)) { p->kind = SLUT_NL_VIEWER_BELOW; return; }
+    if (p->mu_l < -1e-15) { p->kind = SLUT_NL_LIGHT_BELOW; return; }
+    p->r = fmax(p->mu_l, 0.0) / mu_e;
+}
+
+/* Exact near-light radiance, W/(m²·sr) for I0 in W/sr, coefficients in 1/m, lengths in m:
+ *   L = σ_s/(4π) · I0 · σ_t · N(T, g, r, S) = σ_s/(4π) · I0 · E · (T·H)/l,
+ * the second form finite as σ_t → 0 (T·H depends on g and s/l only). 0 for a light below the
+ * plane; NaN-free; +∞ when the ray runs through the light or the light sits at O. */
+SLUT_FN double slut_nl_radiance_exact(double sigma_s_per_m, double sigma_a_per_m, double intensity_w_sr,
+                                      const double *normal, const double *eye_dir,
+                                      const double *light_rel_m, double length_m) {
+    slut_nl_params p;
+    double sigma_t = sigma_s_per_m + sigma_a_per_m;
+    slut_nl_params_from_geometry(normal, eye_dir, light_rel_m, sigma_t, length_m, &p);
+    if (p.kind != SLUT_NL_OK || !(sigma_s_per_m > 0.0) || !(intensity_w_sr > 0.0) || !(length_m > 0.0))
+        return 0.0;
+    if (!(p.distance_m > 0.0)) return SLUT_HUGE_VAL;
+    double H_scaled = slut_nl_H_scaled(p.g, p.S_over_T);
+    if (!SLUT_ISFINITE(H_scaled)) return SLUT_HUGE_VAL;
+    double E = (p.T > 0.0) ? slut_nl_E(p.T, p.g, p.r, p.S) : 1.0;
+    return sigma_s_per_m * SLUT_INV_4PI * intensity_w_sr * E * H_scaled / p.distance_m;
+}
+
+/* ------------------------------------------------------------------ closed forms (no table) */
+
+/* Distant-light attenuation integral ∫_0^S e^{−(1+c)t} dt = (1 − e^{−(1+c)S})/(1+c), c = 1/r
+ * (seed eq. 5; DESIGN §1.3). Written with r: 1/(1+c) = r/(1+r), (1+c)S = S(1+r)/r, and
+ * −expm1 for small exponents. Limits: r = 0 → 0; r = ∞ → 1 − e^{−S}; S = ∞ → r/(1+r);
+ * S = 0 → 0. This is also the T → ∞ limit of T²·N(T, g, r, S). */
+SLUT_FN double slut_distant_light_factor(double r, double S) {
+    SLUT_ASSERT(r >= 0.0 && S >= 0.0);
+    if (!(S > 0.0) || !(r > 0.0)) return 0.0;
+    if (r > 1e300) return -expm1(-S);
+    double frac = r / (1.0 + r);
+    if (S > 1e300) return frac;
+    return frac * -expm1(-S / frac);
+}
+
+/* Distant light (sun over an ocean; seed eq. 5), W/(m²·sr):
+ *   L = Λ/(4π) · L_in · (1 − e^{−σ_t (1+c) s})/(1+c),  c = μ_e/μ_l,  Λ = σ_s/σ_t,
+ * L_in the beam's irradiance at normal incidence (W/m²; DESIGN's L_in), μ_e = ω·n of the viewer,
+ * μ_l = ω_l·n of the light (0 for a light at or below the horizon), s in m (+∞ = thick). */
+SLUT_FN double slut_distant_light_radiance(double sigma_s_per_m, double sigma_a_per_m, double L_in,
+                                           double mu_e, double mu_l, double length_m) {
+    double sigma_t = sigma_s_per_m + sigma_a_per_m;
+    if (!(mu_e > 0.0) || !(mu_l > 0.0) || !(sigma_s_per_m > 0.0) || !(length_m > 0.0)) return 0.0;
+    double S = (length_m > 1e300) ? SLUT_HUGE_VAL : sigma_t * length_m;
+    return (sigma_s_per_m / sigma_t) * SLUT_INV_4PI * L_in * slut_distant_light_factor(mu_l / mu_e, S);
+}
+
+/* Thin-medium approximation of E (seed §4.2; DESIGN §1.3): the distant-light attenuation
+ * averaged over the path, E ≈ (1 − e^{−x})/x, x = (1+c)S = S(1+r)/r. Limits: x → 0 gives 1
+ * (also S = 0), S = ∞ or r = 0 (S > 0) gives 0 — the approximation is wrong for thick media
+ * and as r → 0, as DESIGN says; it never returns NaN. */
+SLUT_FN double slut_nl_E_thin(double r, double S) {
+    SLUT_ASSERT(r >= 0.0 && S >= 0.0);
+    if (!(S > 0.0)) return 1.0;
+    if (!(r > 0.0) || S > 1e300) return 0.0;
+    double x = (r > 1e300) ? S : S * ((1.0 + r) / r);
+    if (x < 1e-300) return 1.0;
+    return -expm1(-x) / x;
+}
+
+/* N ≈ H(T, g, S)·(1 − e^{−(1+c)S})/((1+c)S): closed-form H times slut_nl_E_thin. */
+SLUT_FN double slut_nl_N_thin(double T, double g, double r, double S) {
+    double H = slut_nl_H(T, g, S);
+    if (!(H > 0.0)) return 0.0;
+    double E = slut_nl_E_thin(r, S);
+    if (!SLUT_ISFINITE(H)) return (E > 0.0) ? SLUT_HUGE_VAL : 0.0;
+    return H * E;
+}
+
+#endif /* SLUT_NEARLIGHT_H */

@@ -1,0 +1,72 @@
+// scatterlut runtime — airlight: a point light seen through a homogeneous medium that
+// contains both the viewer and the light (fog around a street lamp).
+//
+// Sign convention: γ is the angle between the view direction and the direction FROM
+// THE VIEWER TO THE LIGHT (γ = 0: looking straight at the light; γ = π: the light is
+// behind the viewer). Texts that use the direction back to the viewer have γ' = π − γ.
+#pragma once
+
+#include <string>
+
+#include "scatterlut/table.hpp"
+
+namespace scatterlut {
+
+// One airlight query in physical units.
+struct AirlightQuery {
+    double sigma_s_per_m = 0;      // scattering coefficient σ_s, 1/m
+    double sigma_a_per_m = 0;      // absorption coefficient σ_a, 1/m
+    double intensity_W_per_sr = 0; // point light intensity I0 (radiant power Φ = 4π I0)
+    double distance_m = 0;         // viewer–light distance D
+    double gamma_rad = 0;          // angle view direction ↔ direction viewer→light
+    double length_m = 0;           // view-ray length s inside the medium (may be +inf)
+};
+
+// The same query from positions and a direction (γ from the vectors themselves, so
+// γ → 0 and γ → π keep their precision). view_dir need not be normalised.
+AirlightQuery airlight_query_from_points(const double viewer_m[3], const double view_dir[3],
+                                         const double light_m[3], double length_m,
+                                         double sigma_s_per_m, double sigma_a_per_m,
+                                         double intensity_W_per_sr);
+
+// Radiance in W/(m²·sr) (for I0 in W/sr). +infinity when the ray passes through the light
+// (γ = 0 and s ≥ D: the integral diverges); 0 for σ_s = 0, I0 = 0 or s = 0; never NaN,
+// never negative. Throws std::invalid_argument for negative or NaN inputs.
+double airlight_radiance_exact(const AirlightQuery &q); // quadrature, ~1e-13 relative
+
+// A loaded F table (kind "airlight_F"): axis 0 u ∈ [0, u_max], axis 1 w = π/2 − v ∈
+// [w_min, π/2], channel 0 = ln G̃ (see kernels/slut_airlight.h).
+class AirlightTable {
+public:
+    // Checks kind, quantity version, axes and channel; throws std::invalid_argument.
+    explicit AirlightTable(Table table);
+
+    // G̃(u, w) with a = u·cot w given by the caller (exact where the caller has it):
+    // interpolated inside the table, asymptotic forms outside (never clamped).
+    double scaled_tail(double u, double w, double a) const;
+    double scaled_tail(double u, double w) const; // a = u·cot w
+
+    // F(u, v) and the tail G(u, v) from the table: G = e^{−u tan v}·w·G̃(u, w) keeps the
+    // table's relative accuracy; F = G(u, 0) − G(u, v) loses it where F ≪ G(u, 0)
+    // (small v·u): absolute error ≈ table error × G(u, 0).
+    double F(double u, double v) const;
+    double tail(double u, double v) const;
+
+    // Radiance as airlight_radiance_exact, from two table samples (or a short Gauss rule
+    // where the two ends' terms would cancel).
+    double radiance(const AirlightQuery &q) const;
+
+    const Table &table() const { return table_; }
+    double u_max() const { return u_max_; }
+    double w_min() const { return w_min_; }
+
+private:
+    Table table_;
+    double u_max_ = 0;
+    double w_min_ = 0;
+};
+
+// Throws std::invalid_argument naming the first invalid field.
+void check_airlight_query(const AirlightQuery &q);
+
+} // namespace scatterlut

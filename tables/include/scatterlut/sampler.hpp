@@ -1,0 +1,23 @@
+// scatterlut runtime — multilinear sampling of a table with the generator's own axis
+// maps (kernels/slut_axes.h). Allocation-free and thread-safe (const, no caches).
+#pragma once
+
+#include <cstddef>
+
+#include "scatterlut/table.hpp"
+
+namespace scatterlut {
+
+// Interpolates channel `channel` at the given parameters (one per axis, in axis order),
+// linearly in each axis's unit coordinate, on the stored (encoded) values, then decodes
+// (Log channels: exp). Parameters outside an axis clamp to its end nodes; callers that
+// must not clamp (the radiance front-ends) check the domain first.
+double sample(const Table &table, const double *params, size_t channel = 0);
+
+// As sample(), but returns the interpolated encoded value (ln q for Log channels).
+double sample_encoded(const Table &table, const double *params, size_t channel = 0);
+
+// Decodes one stored value of a channel.
+double decode(Encoding encoding, double stored);
+
+} // namespace scatterlut

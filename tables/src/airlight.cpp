@@ -1,0 +1,127 @@
+#include "scatterlut/airlight.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "scatterlut/sampler.hpp"
+
+extern "C" {
+#include "slut_airlight.h"
+}
+
+namespace scatterlut {
+namespace {
+
+void require(bool ok, const std::string &message) {
+    if (!ok) throw std::invalid_argument(message);
+}
+
+slut_airlight_geometry setup(const AirlightQuery &q) {
+    check_airlight_query(q);
+    slut_airlight_geometry g;
+    slut_airlight_setup(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
+                        std::sin(q.gamma_rad), std::cos(q.gamma_rad), q.length_m, &g);
+    return g;
+}
+
+} // namespace
+
+void check_airlight_query(const AirlightQuery &q) {
+    auto non_negative = [](double x) { return x >= 0.0 && !std::isnan(x); };
+    require(non_negative(q.sigma_s_per_m) && std::isfinite(q.sigma_s_per_m), "sigma_s must be finite and >= 0 (1/m)");
+    require(non_negative(q.sigma_a_per_m) && std::isfinite(q.sigma_a_per_m), "sigma_a must be finite and >= 0 (1/m)");
+    require(non_negative(q.intensity_W_per_sr) && std::isfinite(q.intensity_W_per_sr), "intensity must be finite and >= 0 (W/sr)");
+    require(q.distance_m > 0.0 && std::isfinite(q.distance_m), "distance must be finite and > 0 (m)");
+    require(q.gamma_rad >= 0.0 && q.gamma_rad <= 3.14159265358979323846 + 1e-15,
+            "gamma must lie in [0, pi] (rad)");
+    require(non_negative(q.length_m), "length must be >= 0 (m; inf allowed)");
+}
+
+AirlightQuery airlight_query_from_points(const double viewer_m[3], const double view_dir[3],
+                                         const double light_m[3], double length_m,
+                                         double sigma_s_per_m, double sigma_a_per_m,
+                                         double intensity_W_per_sr) {
+    double to_light[3], dir_len2 = 0.0, distance2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        to_light[k] = light_m[k] - viewer_m[k];
+        distance2 += to_light[k] * to_light[k];
+        dir_len2 += view_dir[k] * view_dir[k];
+    }
+    require(dir_len2 > 0.0, "view direction must be non-zero");
+    // γ = atan2(|d × l|, d · l): accurate at both ends, unlike acos of the dot product.
+    const double cross[3] = {view_dir[1] * to_light[2] - view_dir[2] * to_light[1],
+                             view_dir[2] * to_light[0] - view_dir[0] * to_light[2],
+                             view_dir[0] * to_light[1] - view_dir[1] * to_light[0]};
+    const double sin_part = std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]);
+    const double cos_part = view_dir[0] * to_light[0] + view_dir[1] * to_light[1] + view_dir[2] * to_light[2];
+    AirlightQuery q;
+    q.sigma_s_per_m = sigma_s_per_m;
+    q.sigma_a_per_m = sigma_a_per_m;
+    q.intensity_W_per_sr = intensity_W_per_sr;
+    q.distance_m = std::sqrt(distance2);
+    q.gamma_rad = std::atan2(sin_part, cos_part);
+    q.length_m = length_m;
+    return q;
+}
+
+double airlight_radiance_exact(const AirlightQuery &q) {
+    const slut_airlight_geometry g = setup(q);
+    return slut_airlight_exact(&g);
+}
+
+AirlightTable::AirlightTable(Table table) : table_(std::move(table)) {
+    require(table_.kind == kKindAirlightF, "not an airlight F table (kind '" + table_.kind + "')");
+    require(table_.quantity_version == kAirlightFQuantityVersion,
+            "airlight table quantity version " + std::to_string(table_.quantity_version) +
+                " is not the one this library knows (" + std::to_string(kAirlightFQuantityVersion) + ")");
+    require(table_.axes.size() == 2 && table_.axes[0].name == "u" && table_.axes[1].name == "w",
+            "airlight table must have axes (u, w)");
+    require(!table_.channels.empty() && table_.channels[0].name == "ln_Gs" &&
+                table_.channels[0].encoding == Encoding::Log,
+            "airlight table channel 0 must be ln_Gs (log encoded)");
+    table_.check_consistent();
+    require(table_.axes[0].map.min == 0.0, "airlight table u axis must start at 0");
+    require(std::fabs(table_.axes[1].map.max - 1.5707963267948966) < 1e-12,
+            "airlight table w axis must end at pi/2");
+    u_max_ = table_.axes[0].map.max;
+    w_min_ = table_.axes[1].map.min;
+}
+
+double AirlightTable::scaled_tail(double u, double w, double a) const {
+    switch (slut_gs_regime(u, w, u_max_, w_min_)) {
+    case SLUT_GS_LARGE_U: return slut_gs_large_u(u, w);
+    case SLUT_GS_SMALL_W: return slut_gs_small_w(w, a);
+    default: {
+        const double params[2] = {u, w};
+        return sample(table_, params, 0);
+    }
+    }
+}
+
+double AirlightTable::scaled_tail(double u, double w) const {
+    return scaled_tail(u, w, u * std::cos(w) / std::sin(w));
+}
+
+double AirlightTable::tail(double u, double v) const {
+    const double w = slut_pio2_minus(v);
+    if (w <= 0.0) return 0.0;
+    const double tan_v = slut_tan_v(v, w);
+    return std::exp(-u * tan_v) * w * scaled_tail(u, w, u * tan_v);
+}
+
+double AirlightTable::F(double u, double v) const {
+    if (v <= 0.0) return 0.0;
+    const double whole = 1.5707963267948966 * scaled_tail(u, 1.5707963267948966, 0.0);
+    return std::fmax(whole - tail(u, v), 0.0);
+}
+
+double AirlightTable::radiance(const AirlightQuery &q) const {
+    const slut_airlight_geometry g = setup(q);
+    if (g.kind != 0) return slut_airlight_from_gs(&g, 0.0, 0.0);
+    const double gs2 = scaled_tail(g.u, g.w2, g.a2);
+    const double gs1 = g.w1 > 0.0 ? scaled_tail(g.u, g.w1, g.a1) : 0.0;
+    return slut_airlight_from_gs(&g, gs2, gs1);
+}
+
+} // namespace scatterlut

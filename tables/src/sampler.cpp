@@ -1,0 +1,45 @@
+#include "scatterlut/sampler.hpp"
+
+#include <cmath>
+
+namespace scatterlut {
+
+double decode(Encoding encoding, double stored) {
+    return encoding == Encoding::Log ? std::exp(stored) : stored;
+}
+
+double sample_encoded(const Table &table, const double *params, size_t channel) {
+    const size_t n_axes = table.axes.size();
+    const size_t n_channels = table.channels.size();
+    // Per axis: lower node and fraction. At most 8 axes (the file format's bound).
+    int lower[8];
+    double frac[8];
+    size_t stride[8];
+    size_t s = n_channels;
+    for (size_t a = 0; a < n_axes && a < 8; ++a) {
+        const slut_axis &map = table.axes[a].map;
+        slut_cell_from_unit(slut_unit_from_param(&map, params[a]), map.count, &lower[a], &frac[a]);
+        stride[a] = s;
+        s *= static_cast<size_t>(map.count);
+    }
+    // Sum over the 2^n corners of the cell.
+    double value = 0.0;
+    const size_t corners = size_t{1} << n_axes;
+    for (size_t corner = 0; corner < corners; ++corner) {
+        double weight = 1.0;
+        size_t index = channel;
+        for (size_t a = 0; a < n_axes; ++a) {
+            const bool upper = (corner >> a) & 1u;
+            weight *= upper ? frac[a] : 1.0 - frac[a];
+            index += (static_cast<size_t>(lower[a]) + (upper ? 1u : 0u)) * stride[a];
+        }
+        if (weight != 0.0) value += weight * table.values[index];
+    }
+    return value;
+}
+
+double sample(const Table &table, const double *params, size_t channel) {
+    return decode(table.channels[channel].encoding, sample_encoded(table, params, channel));
+}
+
+} // namespace scatterlut

@@ -1,0 +1,327 @@
+// The airlight quantities: the shared quadrature (kernels/slut_airlight.h), its closed
+// forms, the radiance assembly and the runtime table, each against a reference that
+// does not share its code: the 30-digit mpmath values of ../shared/reference, the
+// Boost.Math quadrature of tests/airlight_reference.hpp, and closed-form limits.
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include <boost/math/special_functions/expint.hpp>
+#include <gtest/gtest.h>
+
+#include "airlight_reference.hpp"
+#include "generate_airlight.hpp"
+#include "reference_data.hpp"
+#include "scatterlut/airlight.hpp"
+
+extern "C" {
+#include "slut_airlight.h"
+}
+
+using slut_test::rel_err;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The tails of F_ref.json below ~1e-25 disagree with every independent evaluation
+// (Boost Gauss–Kronrod with break points at multiples of 1/u, mpmath at 40–60 digits
+// in t with the same break points, the closed form Im[e^{−iu}E_1(u(T−i))]): e.g. at
+// u = 200, v = π/4 the file says 3.4445e-90, the integral is 3.44253e-90 (see
+// tests/test_references.cpp). Those points are checked against Boost instead.
+bool reference_tail_is_unreliable(long double tail) { return tail < 1e-25L; }
+
+} // namespace
+
+// F and its tail at every reference point (mpmath, 30 digits). Tolerance 1e-12: the
+// panels' Gauss–Legendre error is ~1e-14; what remains is rounding in tan v near π/2.
+TEST(AirlightMath, FAndTailMatchMpmathReference) {
+    double worst = 0;
+    for (const auto &p : slut_test::load_F_refs()) {
+        SCOPED_TRACE("u=" + std::to_string(p.u) + " v=" + std::to_string(p.v));
+        const double F = slut_F_quadrature(p.u, p.v);
+        EXPECT_LE(rel_err(F, p.F), 1e-12);
+        worst = std::max(worst, rel_err(F, p.F));
+        const double tail = slut_tail_quadrature(p.u, p.v);
+        if (p.tail < 1e-300L) {
+            EXPECT_LE(tail, 1e-300) << "a tail below the double range must underflow to (nearly) 0";
+        } else if (reference_tail_is_unreliable(p.tail)) {
+            EXPECT_LE(rel_err(tail, slut_ref::ref_tail(p.u, p.v)), 1e-11);
+        } else {
+            EXPECT_LE(rel_err(tail, p.tail), 1e-12);
+            worst = std::max(worst, rel_err(tail, p.tail));
+        }
+    }
+    RecordProperty("worst_rel_err", std::to_string(worst));
+}
+
+// F(0, v) = v exactly (the integrand is 1).
+TEST(AirlightMath, FAtZeroOpticalDistanceIsV) {
+    for (double v : {0.0, 1e-12, 0.3, 1.0, 1.5707963267948966}) EXPECT_EQ(slut_F_quadrature(0.0, v), v);
+}
+
+// G̃ by the production rule against Boost on a grid spanning every regime: u from 0 to
+// 1e4 (log), w from 1e-9 to π/2. Tolerance 1e-12: both are ~1e-14 quadratures.
+TEST(AirlightMath, ScaledTailMatchesBoostOverTheWholeDomain) {
+    double worst = 0;
+    for (double u : {0.0, 1e-12, 1e-9, 1e-7, 1e-5, 1e-3, 0.03, 0.5, 1.0, 3.0, 17.0, 64.0, 300.0, 1e4}) {
+        for (double w : {1e-9, 1e-6, 1e-4, 1e-3, 0.01, 0.1, 0.5, 1.0, 1.4, 1.5707963267948966}) {
+            const double got = slut_gs_quadrature(u, w, 1.0);
+            const double want = slut_ref::ref_scaled_tail(u, w);
+            EXPECT_LE(rel_err(got, want), 1e-12) << "u=" << u << " w=" << w;
+            EXPECT_GT(got, 0.0);
+            EXPECT_LE(got, 1.0 + 1e-15);
+            worst = std::max(worst, rel_err(got, want));
+        }
+    }
+    RecordProperty("worst_rel_err", std::to_string(worst));
+}
+
+// e^a E_n(a) against Boost's expint(n, a) (a different algorithm), 1e-13.
+TEST(AirlightMath, ScaledExponentialIntegralMatchesBoost) {
+    for (int n : {1, 2, 4})
+        for (double a : {1e-8, 1e-3, 0.2, 0.999, 1.0, 1.5, 7.0, 40.0, 700.0}) {
+            const long double want = std::exp((long double)a) * boost::math::expint(n, (long double)a);
+            EXPECT_LE(rel_err(slut_exp_expint(n, a), want), 1e-13) << "n=" << n << " a=" << a;
+        }
+    EXPECT_EQ(slut_exp_expint(2, 0.0), 1.0);
+    EXPECT_DOUBLE_EQ(slut_exp_expint(4, 0.0), 1.0 / 3.0);
+}
+
+// Beyond the table: the small-w form (error ≤ w⁴/5) and Watson's series for large u
+// (≲ 8!/u^8) are exact to far better than any table. Checked against Boost at the
+// edges where the runtime switches to them and beyond.
+TEST(AirlightMath, AsymptoticFormsMatchBoostWhereTheyAreUsed) {
+    for (double w : {1e-3, 3e-4, 1e-5, 1e-8})
+        for (double u : {0.0, 1e-9, 1e-6, 1e-3, 0.1, 1.0, 30.0, 64.0, 1e3}) {
+            const double a = u * std::cos(w) / std::sin(w);
+            EXPECT_LE(rel_err(slut_gs_small_w(w, a), slut_ref::ref_scaled_tail(u, w)), 1e-11) << "u=" << u << " w=" << w;
+        }
+    for (double u : {64.0, 100.0, 1e3, 1e5})
+        for (double w : {1e-8, 1e-3, 0.1, 0.7, 1.2, 1.5707963267948966})
+            EXPECT_LE(rel_err(slut_gs_large_u(u, w), slut_ref::ref_scaled_tail(u, w)), std::max(3e-6 * std::pow(64.0 / u, 4), 1e-14))
+                << "u=" << u << " w=" << w;
+}
+
+// Exact radiance against the direct physical quadrature values of physical_ref.json
+// (mpmath). 1e-10: the θ-integral is ~1e-13; the margin is for the reference's own
+// 1e-10 cross-check.
+TEST(AirlightRadiance, ExactMatchesPhysicalReference) {
+    for (const auto &c : slut_test::load_airlight_refs()) {
+        scatterlut::AirlightQuery q{c.sigma_s, c.sigma_a, c.intensity, c.distance, c.gamma, c.length};
+        EXPECT_LE(rel_err(scatterlut::airlight_radiance_exact(q), c.L), 1e-10)
+            << "sigma_s=" << c.sigma_s << " D=" << c.distance << " gamma=" << c.gamma << " s=" << c.length;
+    }
+}
+
+// Random geometry over every regime, against Boost's direct quadrature in x (which
+// knows nothing of F, ξ or θ). 1e-10 relative.
+TEST(AirlightRadiance, ExactMatchesDirectQuadratureOnRandomGeometry) {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    double worst = 0;
+    for (int k = 0; k < 300; ++k) {
+        const double D = std::pow(10.0, -2 + 4 * unit(rng));
+        const double tau = std::pow(10.0, -3 + 4 * unit(rng)); // σ_t·D
+        const double sigma_t = tau / D, albedo = unit(rng);
+        const double pick = unit(rng);
+        const double gamma = pick < 0.4   ? kPi * unit(rng)
+                             : pick < 0.7 ? kPi - std::pow(10.0, -7 + 6 * unit(rng))
+                                          : std::pow(10.0, -6 + 5 * unit(rng));
+        const double s = D * std::pow(10.0, -5 + 6 * unit(rng));
+        if (std::cos(gamma) > 0 && std::sin(gamma) * D < 1e-9 * D && s >= D) continue;
+        scatterlut::AirlightQuery q{albedo * sigma_t, (1 - albedo) * sigma_t, 2.0, D, gamma, s};
+        const double want = slut_ref::ref_airlight(q.sigma_s_per_m, q.sigma_a_per_m, 2.0, D, gamma, s);
+        if (!(want > 1e-290)) continue;
+        const double err = rel_err(scatterlut::airlight_radiance_exact(q), want);
+        EXPECT_LE(err, 1e-10) << "D=" << D << " sigma_t=" << sigma_t << " gamma=" << gamma << " s=" << s;
+        worst = std::max(worst, err);
+    }
+    RecordProperty("worst_rel_err", std::to_string(worst));
+}
+
+// Closed-form limits.
+//  γ = 0, s < D (the light beyond the ray's end): σ_s/(4π) I0 e^{−σ_t D} s/(D(D − s)).
+//  γ = 0, s ≥ D: the ray passes through the light; the integral diverges: +inf.
+//  γ = π (light straight behind): σ_s/(4π) I0 e^{σ_t D}[E_2(2σ_t D)/D − E_2(2σ_t(D+s))/(D+s)].
+//  σ_t → 0: σ_s/(4π) I0 · (angle subtended by the segment at the light)/(D sin γ).
+//  s = 0 or σ_s = 0: 0.
+TEST(AirlightRadiance, LimitsAreFiniteAndCorrect) {
+    const double p = 1.0 / (4 * kPi);
+    {
+        scatterlut::AirlightQuery q{0.3, 0.1, 1.0, 5.0, 0.0, 2.0};
+        const double want = 0.3 * p * std::exp(-0.4 * 5.0) * 2.0 / (5.0 * 3.0);
+        EXPECT_LE(rel_err(scatterlut::airlight_radiance_exact(q), want), 1e-13);
+        q.gamma_rad = 1e-12; // just off the axis: continuous
+        EXPECT_LE(rel_err(scatterlut::airlight_radiance_exact(q), want), 1e-9);
+        q.gamma_rad = 0.0;
+        q.length_m = 6.0;
+        EXPECT_TRUE(std::isinf(scatterlut::airlight_radiance_exact(q)));
+    }
+    {
+        const double st = 0.4, D = 3.0, s = 7.0;
+        scatterlut::AirlightQuery q{0.3, 0.1, 1.0, D, kPi, s};
+        const long double want = 0.3L * p * std::exp((long double)(st * D)) *
+                                 (boost::math::expint(2, 2.0L * st * D) / D -
+                                  boost::math::expint(2, 2.0L * st * (D + s)) / (D + s));
+        EXPECT_LE(rel_err(scatterlut::airlight_radiance_exact(q), want), 1e-12);
+    }
+    {
+        const double D = 2.0, gamma = 1.1, s = 3.0;
+        scatterlut::AirlightQuery q{1e-300, 0.0, 1.0, D, gamma, s};
+        const double subtended = std::atan2(s * std::sin(gamma), D - s * std::cos(gamma));
+        const double want = 1e-300 * p * subtended / (D * std::sin(gamma));
+        EXPECT_LE(rel_err(scatterlut::airlight_radiance_exact(q), want), 1e-13);
+    }
+    EXPECT_EQ(scatterlut::airlight_radiance_exact({0.5, 0.1, 1.0, 2.0, 1.0, 0.0}), 0.0);
+    EXPECT_EQ(scatterlut::airlight_radiance_exact({0.0, 0.1, 1.0, 2.0, 1.0, 3.0}), 0.0);
+    EXPECT_THROW(scatterlut::airlight_radiance_exact({-1.0, 0.1, 1.0, 2.0, 1.0, 3.0}), std::invalid_argument);
+    EXPECT_THROW(scatterlut::airlight_radiance_exact({0.1, 0.1, 1.0, 2.0, std::nan(""), 3.0}), std::invalid_argument);
+}
+
+// An infinite ray equals the limit of long finite ones.
+TEST(AirlightRadiance, InfiniteRayIsTheLimitOfLongRays) {
+    scatterlut::AirlightQuery q{0.2, 0.05, 1.0, 4.0, 2.0, std::numeric_limits<double>::infinity()};
+    const double inf_ray = scatterlut::airlight_radiance_exact(q);
+    q.length_m = 400.0; // e^{−0.25·400} of the light path left: negligible
+    EXPECT_LE(rel_err(inf_ray, scatterlut::airlight_radiance_exact(q)), 1e-13);
+}
+
+// The direction-vector front end gives γ from the vectors (atan2 of |d×l| and d·l).
+TEST(AirlightRadiance, QueryFromPointsMatchesAngles) {
+    const double viewer[3] = {1, 2, 3}, dir[3] = {0, 0, 2}, light[3] = {1, 2 + 4 * std::sin(0.7), 3 + 4 * std::cos(0.7)};
+    const auto q = scatterlut::airlight_query_from_points(viewer, dir, light, 9.0, 0.1, 0.2, 3.0);
+    EXPECT_NEAR(q.gamma_rad, 0.7, 1e-15);
+    EXPECT_NEAR(q.distance_m, 4.0, 1e-14);
+    const double behind[3] = {1, 2, 3 - 5.0};
+    EXPECT_NEAR(scatterlut::airlight_query_from_points(viewer, dir, behind, 9.0, 0.1, 0.2, 3.0).gamma_rad, kPi, 1e-15);
+}
+
+// Axis maps round-trip (parameter → unit → parameter), end nodes are exact, and the
+// texel-centre convention puts node i at texture coordinate (i + 0.5)/count.
+TEST(AxisMaps, RoundTripAndTexelCentres) {
+    const slut_axis axes[] = {{0.0, 64.0, 1e-7, SLUT_WARP_LOG1P, 512},
+                              {1e-3, SLUT_PIO2_HI, 0.0, SLUT_WARP_ASINH_COT, 256},
+                              {1e-3, 100.0, 0.0, SLUT_WARP_LOG, 33},
+                              {-1.0, 1.0, 0.0, SLUT_WARP_SQRT1P, 65},
+                              {-2.0, 3.0, 0.0, SLUT_WARP_LINEAR, 9}};
+    for (const auto &a : axes) {
+        EXPECT_EQ(slut_axis_node(&a, 0), a.min);
+        EXPECT_EQ(slut_axis_node(&a, a.count - 1), a.max);
+        for (int i = 0; i < a.count; ++i) {
+            const double p = slut_axis_node(&a, i);
+            const double x = slut_unit_from_param(&a, p);
+            EXPECT_NEAR(x, double(i) / (a.count - 1), 1e-12) << "warp " << a.warp << " node " << i;
+            EXPECT_NEAR(slut_texcoord_from_unit(x, a.count), (i + 0.5) / a.count, 1e-12);
+            if (i > 0) {
+                EXPECT_GT(p, slut_axis_node(&a, i - 1)) << "nodes must increase";
+            }
+            const double back = slut_param_from_unit(&a, x);
+            EXPECT_LE(std::fabs(back - p), 1e-12 * std::max(std::fabs(p), 1e-3)) << "warp " << a.warp;
+        }
+        int i0;
+        double f;
+        slut_cell_from_unit(1.0, a.count, &i0, &f);
+        EXPECT_EQ(i0, a.count - 2);
+        EXPECT_EQ(f, 1.0);
+        slut_cell_from_unit(-0.5, a.count, &i0, &f); // clamp, never wrap
+        EXPECT_EQ(i0, 0);
+        EXPECT_EQ(f, 0.0);
+    }
+}
+
+// ----------------------------------------------------------------- the table path
+
+namespace {
+
+// A default-plan table integrated on the host with the shared quadrature (the device
+// path is tested against Boost in test_kernel).
+const scatterlut::AirlightTable &host_table() {
+    static const scatterlut::AirlightTable table = [] {
+        scatterlut::Table t = scatterlut::make_airlight_table_layout(scatterlut::AirlightPlan{});
+        const slut_axis &au = t.axes[0].map, &aw = t.axes[1].map;
+        t.values.resize(static_cast<size_t>(au.count) * aw.count);
+        for (int j = 0; j < aw.count; ++j)
+            for (int i = 0; i < au.count; ++i)
+                t.values[static_cast<size_t>(j) * au.count + i] =
+                    std::log(slut_gs_quadrature(slut_axis_node(&au, i), slut_axis_node(&aw, j), 1.0));
+        return scatterlut::AirlightTable(std::move(t));
+    }();
+    return table;
+}
+
+} // namespace
+
+// The acceptance: table radiance within 0.1 % for γ ∈ [1e-3, π − 1e-6] wherever
+// e^{−σ_t D} ≥ 1e-6, at the default resolution; finite and non-negative everywhere.
+TEST(AirlightTable, RadianceWithinTenthOfAPercentOverTheAcceptanceDomain) {
+    const auto &table = host_table();
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    double worst = 0;
+    for (int k = 0; k < 20000; ++k) {
+        const double D = std::pow(10.0, -2 + 4 * unit(rng));
+        const double tau = std::exp(std::log(1e-4) + (std::log(13.8) - std::log(1e-4)) * unit(rng));
+        const double sigma_t = tau / D;
+        const double pick = unit(rng);
+        const double gamma = pick < 0.4   ? 1e-3 + (kPi - 1e-3 - 1e-6) * unit(rng)
+                             : pick < 0.7 ? kPi - std::pow(10.0, -6 + 5.5 * unit(rng))
+                                          : std::pow(10.0, -3 + 3 * unit(rng));
+        const double s = unit(rng) < 0.1 ? std::numeric_limits<double>::infinity() : D * std::pow(10.0, -5 + 7 * unit(rng));
+        scatterlut::AirlightQuery q{0.7 * sigma_t, 0.3 * sigma_t, 1.0, D, gamma, s};
+        const double exact = scatterlut::airlight_radiance_exact(q);
+        const double got = table.radiance(q);
+        ASSERT_TRUE(std::isfinite(got) && got >= 0) << "D=" << D << " gamma=" << gamma << " s=" << s;
+        const double err = rel_err(got, exact);
+        EXPECT_LE(err, 1e-3) << "D=" << D << " sigma_t=" << sigma_t << " gamma=" << gamma << " s=" << s;
+        worst = std::max(worst, err);
+    }
+    RecordProperty("worst_rel_err", std::to_string(worst));
+}
+
+// Outside the acceptance domain the table path stays finite, non-negative and close:
+// huge and tiny optical depths, u beyond the table (asymptotics, not clamping), the
+// exact axis (γ = 0, γ = π), s → 0, σ_t → 0.
+TEST(AirlightTable, HardCasesStayFiniteAndAccurate) {
+    const auto &table = host_table();
+    const double inf = std::numeric_limits<double>::infinity();
+    const scatterlut::AirlightQuery cases[] = {
+        {0.5, 0.5, 1.0, 200.0, 1.5, 10.0},    // u = 200 sin γ, far beyond u_max = 64
+        {5.0, 5.0, 1.0, 30.0, 0.5, inf},      // σ_t D = 300
+        {1e-9, 0.0, 1.0, 3.0, 2.0, 50.0},     // σ_t → 0
+        {0.0, 0.0, 1.0, 3.0, 2.0, 50.0},      // no medium at all
+        {0.3, 0.1, 1.0, 5.0, 0.0, 2.0},       // γ = 0, light beyond the ray
+        {0.3, 0.1, 1.0, 5.0, kPi, 2.0},       // γ = π
+        {0.3, 0.1, 1.0, 5.0, kPi - 1e-12, inf},
+        {0.3, 0.1, 1.0, 5.0, 1.0, 1e-12},     // s → 0
+        {0.3, 0.1, 1.0, 1e-6, 2.5, 1.0},      // the light next to the viewer
+        {0.3, 0.1, 1.0, 5.0, 1e-7, 4.999},    // grazing the light
+    };
+    for (const auto &q : cases) {
+        const double exact = scatterlut::airlight_radiance_exact(q);
+        const double got = table.radiance(q);
+        EXPECT_TRUE(std::isfinite(got) && got >= 0) << "gamma=" << q.gamma_rad << " D=" << q.distance_m;
+        if (exact > 1e-300) {
+            EXPECT_LE(rel_err(got, exact), 1e-3) << "gamma=" << q.gamma_rad << " D=" << q.distance_m;
+        } else {
+            EXPECT_EQ(got, 0.0);
+        }
+    }
+    scatterlut::AirlightQuery through{0.3, 0.1, 1.0, 5.0, 0.0, 6.0};
+    EXPECT_TRUE(std::isinf(table.radiance(through)));
+}
+
+// F and the tail from the table: the tail keeps the table's relative accuracy; F does
+// where it is not ≪ F(u, π/2) (documented in airlight.hpp).
+TEST(AirlightTable, FAndTailFromTheTable) {
+    const auto &table = host_table();
+    for (double u : {0.0, 1e-6, 0.01, 0.7, 5.0, 40.0, 500.0})
+        for (double v : {0.3, 0.8, 1.2, 1.5, 1.5707, 1.5707963}) {
+            EXPECT_LE(rel_err(table.tail(u, v), slut_ref::ref_tail(u, v)), 1e-3) << "u=" << u << " v=" << v;
+            const double F = slut_ref::ref_F(u, v);
+            if (F > 0.2 * slut_ref::ref_F(u, kPi / 2)) {
+                EXPECT_LE(rel_err(table.F(u, v), F), 2e-3) << "u=" << u << " v=" << v;
+            }
+        }
+}

@@ -1,0 +1,105 @@
+// Smoke tests of the `scatterlut` executable: exit codes, files, and eval's JSON lines.
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "reference_data.hpp"
+
+namespace {
+
+struct Result {
+    int exit_code;
+    std::string out;
+};
+
+// Runs the binary with `args` (shell syntax), optional stdin text; captures stdout.
+Result run(const std::string &args, const std::string &input = "") {
+    const std::string dir = testing::TempDir();
+    static int calls = 0; // ctest runs tests as parallel processes: unique names per call
+    const std::string stem = dir + "/slut_cli_" + std::to_string(getpid()) + "_" + std::to_string(++calls);
+    const std::string in_path = stem + ".in";
+    std::ofstream(in_path) << input;
+    const std::string command = std::string(SLUT_BINARY) + " " + args + " < " + in_path + " 2>" + stem + ".err";
+    FILE *pipe = popen(command.c_str(), "r");
+    std::string out;
+    char buffer[4096];
+    size_t n;
+    while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) out.append(buffer, n);
+    const int status = pclose(pipe);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::vector<nlohmann::json> json_lines(const std::string &text) {
+    std::vector<nlohmann::json> out;
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line)) out.push_back(nlohmann::json::parse(line));
+    return out;
+}
+
+std::string out_dir() { return testing::TempDir() + "/slut_cli_tables_" + std::to_string(getpid()); }
+
+} // namespace
+
+TEST(Cli, VersionAndDevices) {
+    EXPECT_EQ(run("--version").exit_code, 0);
+    const Result devices = run("devices");
+    EXPECT_EQ(devices.exit_code, 0);
+    EXPECT_NE(devices.out.find("fp64: yes"), std::string::npos) << devices.out;
+}
+
+TEST(Cli, BadArgumentsExitNonZero) {
+    EXPECT_EQ(run("").exit_code, 2);                          // a subcommand is required
+    EXPECT_EQ(run("generate --n-u 3").exit_code, 2);          // out of range
+    EXPECT_EQ(run("generate --format png").exit_code, 2);     // not a member
+    EXPECT_EQ(run("eval --table /nonexistent.slut").exit_code, 2);
+}
+
+TEST(Cli, GenerateThenEval) {
+    const std::string dir = out_dir();
+    std::filesystem::remove_all(dir);
+    const Result gen = run("generate --out " + dir + " --n-u 128 --n-w 64");
+    ASSERT_EQ(gen.exit_code, 0) << gen.out;
+    ASSERT_TRUE(std::filesystem::exists(dir + "/airlight_F.slut"));
+    ASSERT_TRUE(std::filesystem::exists(dir + "/airlight_F.exr"));
+
+    const auto refs = slut_test::load_airlight_refs();
+    const auto &c = refs.at(1);
+    nlohmann::json air = {{"quantity", "airlight"}, {"sigma_s", c.sigma_s}, {"sigma_a", c.sigma_a},
+                          {"intensity", c.intensity}, {"distance", c.distance}, {"gamma", c.gamma},
+                          {"length", c.length}};
+    const std::string input = nlohmann::json({{"quantity", "F"}, {"u", 0.5}, {"v", 1.0}}).dump() + "\n" +
+                              "this is not json\n" + air.dump() + "\n" +
+                              R"({"quantity":"airlight","sigma_s":0.3,"sigma_a":0.1,"intensity":1,"distance":5,"gamma":0,"length":"inf"})" "\n" +
+                              R"({"quantity":"F","u":-1,"v":1})" "\n" + R"({"quantity":"teapot"})" "\n";
+    for (const std::string &table : {dir + "/airlight_F.slut", dir + "/airlight_F.exr"}) {
+        const Result r = run("eval --table " + table, input);
+        ASSERT_EQ(r.exit_code, 0);
+        const auto lines = json_lines(r.out);
+        ASSERT_EQ(lines.size(), 6u) << r.out;
+        EXPECT_EQ(lines[0]["u"], 0.5); // the query is echoed
+        EXPECT_TRUE(lines[0]["exact"].is_number());
+        EXPECT_LE(slut_test::rel_err(lines[0]["table"].get<double>(), lines[0]["exact"].get<double>()), 1e-3);
+        EXPECT_TRUE(lines[1].contains("error"));
+        EXPECT_NE(lines[1]["error"].get<std::string>().find("line 2"), std::string::npos);
+        EXPECT_LE(slut_test::rel_err(lines[2]["exact"].get<double>(), c.L), 1e-10);
+        EXPECT_LE(slut_test::rel_err(lines[2]["table"].get<double>(), c.L), 1e-3);
+        EXPECT_TRUE(lines[3]["exact"].is_null()); // diverges: through the light
+        EXPECT_TRUE(lines[3].contains("note"));
+        EXPECT_TRUE(lines[4].contains("error"));
+        EXPECT_TRUE(lines[5].contains("error"));
+    }
+    // Without a table, "table" is null.
+    const auto lines = json_lines(run("eval", air.dump() + "\n").out);
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_TRUE(lines[0]["table"].is_null());
+}

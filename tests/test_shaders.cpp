@@ -1,0 +1,1156 @@
+// The GPU sampling snippets (tables/shaders/scatterlut_airlight.{glsl,hlsl}) against the
+// truth they must reproduce: the C++ runtime sampler (scatterlut::AirlightTable,
+// tables/src/airlight.cpp, itself tested against Boost.Math in test_airlight.cpp) on the
+// same table. The snippets are written by hand in single precision; these tests are what
+// keeps them from drifting:
+//   - ShaderSources: the GLSL and HLSL bodies are byte-identical, ASCII, and their
+//     constants (warp ids, regimes, Gauss-Legendre rule) equal kernels/slut_*.h;
+//   - ShaderGlslang: both compile with glslang (GLSL for OpenGL and Vulkan, compute and
+//     fragment; HLSL compute and pixel), with and without the hardware-filter option;
+//   - GpuShaders: the GLSL runs for real (surfaceless EGL, OpenGL 4.3 core, Mesa llvmpipe
+//     where there is no GPU) on a 128x64 table uploaded as R32F, and the HLSL too where
+//     spirv-cross is installed (HLSL -> SPIR-V by glslang -> GLSL 4.30 by spirv-cross),
+//     for ~5600 queries, compared with the double-precision C++ sampler fed the same
+//     float-rounded inputs and float-rounded table;
+//   - ShaderQueries: those queries exercise every regime and branch of the C++ code.
+// Tools come from configure time (find_program); a missing tool or EGL display skips,
+// unless SCATTERLUT_REQUIRE_SHADER_TESTS is set, which makes it a failure.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "scatterlut/airlight.hpp"
+#include "scatterlut/table.hpp"
+
+extern "C" {
+#include "slut_airlight.h"
+#include "slut_axes.h"
+}
+
+#if SLUT_HAVE_EGL
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/glcorearb.h>
+#endif
+
+#ifndef SLUT_GLSLANG_VALIDATOR
+#define SLUT_GLSLANG_VALIDATOR ""
+#endif
+#ifndef SLUT_SPIRV_CROSS
+#define SLUT_SPIRV_CROSS ""
+#endif
+#ifndef SLUT_REQUIRE_SHADER_TESTS
+#define SLUT_REQUIRE_SHADER_TESTS 0
+#endif
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+const std::string kShaderDir = std::string(SLUT_SOURCE_DIR) + "/tables/shaders/";
+const std::string kGlslang = SLUT_GLSLANG_VALIDATOR;
+const std::string kSpirvCross = SLUT_SPIRV_CROSS;
+
+// A missing tool or display: skip, or fail where the build asked for the shader tests.
+#define SLUT_SKIP_OR_FAIL(message)                                                         \
+    do {                                                                                   \
+        if (SLUT_REQUIRE_SHADER_TESTS) FAIL() << (message);                                \
+        GTEST_SKIP() << (message);                                                         \
+    } while (0)
+
+std::string read_text(const std::string &path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error("cannot read " + path);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+void write_text(const std::string &path, const std::string &text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+const std::string &glsl_snippet() {
+    static const std::string text = read_text(kShaderDir + "scatterlut_airlight.glsl");
+    return text;
+}
+const std::string &hlsl_snippet() {
+    static const std::string text = read_text(kShaderDir + "scatterlut_airlight.hlsl");
+    return text;
+}
+
+const char *kBodyBegin = "// ==== BEGIN SHARED BODY";
+const char *kBodyEnd = "// ==== END SHARED BODY ====";
+
+std::string shared_body(const std::string &text) {
+    const size_t b = text.find(kBodyBegin), e = text.find(kBodyEnd);
+    if (b == std::string::npos || e == std::string::npos || e < b) return "";
+    return text.substr(b, e - b);
+}
+
+// A scratch directory for this process (tool inputs and outputs), removed at exit unless
+// SLUT_KEEP_SHADER_SCRATCH is set (to inspect what glslang / spirv-cross were given).
+struct ScratchDir {
+    std::string path;
+    ScratchDir() {
+        std::string templ = (std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp");
+        templ += "/slut_shaders_XXXXXX";
+        std::vector<char> buf(templ.begin(), templ.end());
+        buf.push_back('\0');
+        if (!mkdtemp(buf.data())) throw std::runtime_error("mkdtemp failed in " + templ);
+        path = buf.data();
+    }
+    ~ScratchDir() {
+        std::error_code ec;
+        if (!std::getenv("SLUT_KEEP_SHADER_SCRATCH")) std::filesystem::remove_all(path, ec);
+    }
+};
+
+const std::string &scratch_dir() {
+    static const ScratchDir dir;
+    return dir.path;
+}
+
+// Runs a command, returns its exit status; its output (stdout + stderr) in *output.
+int run_command(const std::string &command, std::string *output) {
+    FILE *pipe = popen((command + " 2>&1").c_str(), "r");
+    if (!pipe) return -1;
+    std::string text;
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) text.append(buf, n);
+    const int status = pclose(pipe);
+    if (output) *output = text;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string quoted(const std::string &s) { return "'" + s + "'"; }
+
+// ------------------------------------------------------------------------ the table
+
+constexpr int kCountU = 128, kCountW = 64;
+constexpr double kUMax = 64.0, kUScale = 1e-7, kWMin = 1e-3;
+
+// The airlight table as docs/AIRLIGHT.md defines it (the layout of
+// host/src/generate_airlight.cpp), integrated here with the shared quadrature and rounded
+// to f32 as a file round trip would: u LOG1P scale 1e-7 on [0, 64], w ASINH_COT on
+// [1e-3, pi/2], channel ln_Gs.
+scatterlut::Table make_table() {
+    scatterlut::Table t;
+    t.kind = scatterlut::kKindAirlightF;
+    t.quantity_version = scatterlut::kAirlightFQuantityVersion;
+    scatterlut::Axis u;
+    u.name = "u";
+    u.meaning = "optical distance sigma_t*D*sin(gamma)";
+    u.map.min = 0.0;
+    u.map.max = kUMax;
+    u.map.scale = kUScale;
+    u.map.warp = SLUT_WARP_LOG1P;
+    u.map.count = kCountU;
+    scatterlut::Axis w;
+    w.name = "w";
+    w.meaning = "pi/2 - v (rad)";
+    w.map.min = kWMin;
+    w.map.max = SLUT_PIO2_HI;
+    w.map.scale = 0.0;
+    w.map.warp = SLUT_WARP_ASINH_COT;
+    w.map.count = kCountW;
+    t.axes = {u, w};
+    scatterlut::Channel c;
+    c.name = "ln_Gs";
+    c.meaning = "ln of the scaled tail";
+    c.encoding = scatterlut::Encoding::Log;
+    t.channels = {c};
+    t.storage = scatterlut::Storage::F32;
+    t.values.resize(static_cast<size_t>(kCountU) * kCountW);
+    for (int j = 0; j < kCountW; ++j) {
+        const double wj = slut_axis_node(&t.axes[1].map, j);
+        for (int i = 0; i < kCountU; ++i) {
+            const double ui = slut_axis_node(&t.axes[0].map, i);
+            const float stored = static_cast<float>(std::log(slut_gs_quadrature(ui, wj, 1.0)));
+            t.values[static_cast<size_t>(j) * kCountU + i] = stored;
+        }
+    }
+    t.check_consistent();
+    return t;
+}
+
+const scatterlut::AirlightTable &airlight_table() {
+    static const scatterlut::AirlightTable table(make_table());
+    return table;
+}
+
+// ---------------------------------------------------------------------- the queries
+
+// One GPU query: 16 floats. mode 0: Gs(u, w); 1: radiance(sigma_s, sigma_a, I0, D,
+// sin gamma, cos gamma, s); 2: radiance from points (viewer, dir, light, s, sigma_s,
+// sigma_a, I0).
+enum Mode { kScaledTail = 0, kRadiance = 1, kPoints = 2 };
+constexpr int kQueryFloats = 16;
+
+struct Query {
+    std::array<float, kQueryFloats> gpu{}; // what the shader gets
+    double reference = 0;                  // the C++ sampler on the same (rounded) inputs
+    std::string label;                     // for messages
+};
+
+double log_uniform(std::mt19937_64 &rng, double lo, double hi) {
+    std::uniform_real_distribution<double> d(std::log(lo), std::log(hi));
+    return std::exp(d(rng));
+}
+
+std::string describe(const std::array<float, kQueryFloats> &q) {
+    std::ostringstream s;
+    s.precision(9);
+    s << "mode " << q[0] << " [";
+    const int n = q[0] == kScaledTail ? 3 : q[0] == kRadiance ? 8 : 14;
+    for (int k = 1; k < n; ++k) s << (k > 1 ? ", " : "") << q[k];
+    s << "]";
+    return s.str();
+}
+
+std::vector<Query> make_queries() {
+    const scatterlut::AirlightTable &table = airlight_table();
+    std::mt19937_64 rng(20240611);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<Query> out;
+
+    // Gs(u, w) in every regime: the table (points uniform in the warped coordinates),
+    // u = 0, u around and beyond u_max (Watson), w below w_min (e^a E_n), w near pi/2.
+    const slut_axis &au = table.table().axes[0].map;
+    const slut_axis &aw = table.table().axes[1].map;
+    for (int i = 0; i < 2000; ++i) {
+        const double r1 = unit(rng), r2 = unit(rng);
+        double u = slut_param_from_unit(&au, unit(rng));
+        double w = slut_param_from_unit(&aw, unit(rng));
+        if (r1 < 0.08) u = 0.0;
+        else if (r1 < 0.2) u = log_uniform(rng, kUMax, 1e4);
+        else if (r1 < 0.25) u = kUMax * (1.0 + 2e-3 * (unit(rng) - 0.5));
+        else if (r1 < 0.3) u = log_uniform(rng, 1e-12, 1e-6);
+        if (r2 < 0.12) w = log_uniform(rng, 1e-7, kWMin);
+        else if (r2 < 0.17) w = kPi / 2 - log_uniform(rng, 1e-7, 1e-2);
+        else if (r2 < 0.2) w = kWMin * (1.0 + 2e-3 * (unit(rng) - 0.5));
+        Query q;
+        q.gpu[0] = kScaledTail;
+        q.gpu[1] = static_cast<float>(u);
+        q.gpu[2] = static_cast<float>(w);
+        q.reference = table.scaled_tail(q.gpu[1], q.gpu[2]);
+        q.label = "Gs";
+        out.push_back(q);
+    }
+
+    // Radiance over the acceptance domain of docs/AIRLIGHT.md and beyond it: sigma_t D in
+    // [1e-4, 13.8] (and up to 85, where u passes u_max; e^{-87} is float's smallest normal), D in [0.01, 100], s/D in
+    // [1e-5, 100] or infinite, gamma uniform, near 0, near pi and exactly 0 and pi.
+    for (int i = 0; i < 3000; ++i) {
+        const double r_tau = unit(rng), r_gamma = unit(rng), r_s = unit(rng);
+        const bool large_u = r_tau >= 0.92; // u = sigma_t D sin gamma > u_max = 64
+        const double tau = r_tau < 0.8 ? log_uniform(rng, 1e-4, 13.8)
+                           : large_u   ? log_uniform(rng, 70.0, 85.0)
+                                       : log_uniform(rng, 13.8, 85.0);
+        const double D = log_uniform(rng, 0.01, 100.0);
+        const double sigma_t = tau / D;
+        const double albedo = 0.05 + 0.95 * unit(rng);
+        // e^{-sigma_t D} ~ 1e-37 at the top: a bright light keeps the result in float's range.
+        const double I0 = log_uniform(rng, 1.0, 1e4) * (tau > 13.8 ? 1e12 : 1.0);
+        double gamma = kPi * unit(rng);
+        if (r_gamma < 0.2) gamma = log_uniform(rng, 1e-7, 0.1);
+        else if (r_gamma < 0.4) gamma = kPi - log_uniform(rng, 1e-7, 0.1);
+        else if (r_gamma < 0.43) gamma = 0.0;
+        else if (r_gamma < 0.46) gamma = kPi;
+        if (large_u) gamma = 1.2 + (kPi - 2.4) * unit(rng);
+        const double s = r_s < 0.15 ? std::numeric_limits<double>::infinity()
+                                    : D * log_uniform(rng, 1e-5, 100.0);
+        Query q;
+        q.gpu[0] = kRadiance;
+        q.gpu[1] = static_cast<float>(albedo * sigma_t);
+        q.gpu[2] = static_cast<float>((1.0 - albedo) * sigma_t);
+        q.gpu[3] = static_cast<float>(I0);
+        q.gpu[4] = static_cast<float>(D);
+        q.gpu[5] = gamma == kPi ? 0.0f : static_cast<float>(std::sin(gamma));
+        q.gpu[6] = gamma == kPi ? -1.0f : static_cast<float>(std::cos(gamma));
+        q.gpu[7] = static_cast<float>(s);
+        scatterlut::AirlightQuery cq;
+        cq.sigma_s_per_m = q.gpu[1];
+        cq.sigma_a_per_m = q.gpu[2];
+        cq.intensity_W_per_sr = q.gpu[3];
+        cq.distance_m = q.gpu[4];
+        cq.gamma_rad = std::atan2(static_cast<double>(q.gpu[5]), static_cast<double>(q.gpu[6]));
+        cq.length_m = q.gpu[7];
+        q.reference = table.radiance(cq);
+        q.label = "radiance";
+        out.push_back(q);
+    }
+
+    // Degenerate inputs: zero radiance (sigma_s = 0, I0 = 0, s = 0) and the ray through
+    // the light (gamma = 0, s >= D: +inf), and gamma = 0 short of the light (finite).
+    const float inf = std::numeric_limits<float>::infinity();
+    const std::array<std::array<float, 7>, 7> degenerate = {{{0.0f, 0.1f, 1.0f, 2.0f, 0.5f, 0.8f, 3.0f},
+                                                           {0.1f, 0.1f, 0.0f, 2.0f, 0.5f, 0.8f, 3.0f},
+                                                           {0.1f, 0.1f, 1.0f, 2.0f, 0.5f, 0.8f, 0.0f},
+                                                           {0.1f, 0.1f, 1.0f, 2.0f, 0.0f, 1.0f, 2.0f},
+                                                           {0.1f, 0.1f, 1.0f, 2.0f, 0.0f, 1.0f, inf},
+                                                           {0.1f, 0.1f, 1.0f, 2.0f, 0.0f, 1.0f, 1.5f},
+                                                           {0.1f, 0.1f, 1.0f, 2.0f, 0.0f, -1.0f, inf}}};
+    for (const auto &d : degenerate) {
+        Query q;
+        q.gpu[0] = kRadiance;
+        std::copy(d.begin(), d.end(), q.gpu.begin() + 1);
+        scatterlut::AirlightQuery cq;
+        cq.sigma_s_per_m = d[0];
+        cq.sigma_a_per_m = d[1];
+        cq.intensity_W_per_sr = d[2];
+        cq.distance_m = d[3];
+        cq.gamma_rad = std::atan2(static_cast<double>(d[4]), static_cast<double>(d[5]));
+        cq.length_m = d[6];
+        q.reference = table.radiance(cq);
+        q.label = "radiance";
+        out.push_back(q);
+    }
+
+    // Radiance from points: viewer within D of the origin (so that float positions keep
+    // D's precision), gamma in [0.1, pi - 0.1] (a float cross product of nearly parallel
+    // vectors loses sin gamma's relative precision; that is the caller's input, not the
+    // snippet's error) and a few exactly collinear rays both ways.
+    for (int i = 0; i < 600; ++i) {
+        const double D = log_uniform(rng, 0.01, 100.0);
+        const double tau = log_uniform(rng, 1e-4, 13.8);
+        const double sigma_t = tau / D, albedo = 0.05 + 0.95 * unit(rng);
+        std::normal_distribution<double> normal;
+        double viewer[3], l_dir[3], e1[3], e2[3];
+        for (int k = 0; k < 3; ++k) viewer[k] = D * (2.0 * unit(rng) - 1.0);
+        const double r = unit(rng);
+        const bool collinear = r < 0.1;
+        double n2 = 0;
+        for (int k = 0; k < 3; ++k) {
+            l_dir[k] = normal(rng);
+            n2 += l_dir[k] * l_dir[k];
+        }
+        for (int k = 0; k < 3; ++k) l_dir[k] /= std::sqrt(n2);
+        // e1 ⟂ l_dir, then the view direction at angle gamma from l_dir.
+        const double any[3] = {std::fabs(l_dir[0]) < 0.9 ? 1.0 : 0.0, std::fabs(l_dir[0]) < 0.9 ? 0.0 : 1.0, 0.0};
+        e2[0] = l_dir[1] * any[2] - l_dir[2] * any[1];
+        e2[1] = l_dir[2] * any[0] - l_dir[0] * any[2];
+        e2[2] = l_dir[0] * any[1] - l_dir[1] * any[0];
+        const double ne2 = std::sqrt(e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]);
+        for (int k = 0; k < 3; ++k) e1[k] = e2[k] / ne2;
+        const double gamma = r < 0.05 ? 0.0 : r < 0.1 ? kPi : 0.1 + (kPi - 0.2) * unit(rng);
+        double dir[3];
+        for (int k = 0; k < 3; ++k) dir[k] = std::cos(gamma) * l_dir[k] + std::sin(gamma) * e1[k];
+        const double s = unit(rng) < 0.15 ? std::numeric_limits<double>::infinity()
+                                           : D * log_uniform(rng, 1e-5, 100.0);
+        Query q;
+        q.gpu[0] = kPoints;
+        // Collinear rays (gamma exactly 0 or pi): positions on a 2^-10 grid, so that
+        // light - viewer is exact in float and in double, and the direction is ±(light - viewer).
+        const double grid = collinear ? 1024.0 : 0.0;
+        for (int k = 0; k < 3; ++k) {
+            const double v = viewer[k], l = viewer[k] + D * l_dir[k];
+            q.gpu[1 + k] = static_cast<float>(collinear ? std::round(v * grid) / grid : v);
+            q.gpu[7 + k] = static_cast<float>(collinear ? std::round(l * grid) / grid : l);
+            q.gpu[4 + k] = collinear ? (r < 0.05 ? 1.0f : -1.0f) * (q.gpu[7 + k] - q.gpu[1 + k])
+                                     : static_cast<float>(dir[k]);
+        }
+        q.gpu[10] = static_cast<float>(s);
+        q.gpu[11] = static_cast<float>(albedo * sigma_t);
+        q.gpu[12] = static_cast<float>((1.0 - albedo) * sigma_t);
+        q.gpu[13] = static_cast<float>(log_uniform(rng, 1.0, 1e4));
+        const double v[3] = {q.gpu[1], q.gpu[2], q.gpu[3]}, d[3] = {q.gpu[4], q.gpu[5], q.gpu[6]},
+                     l[3] = {q.gpu[7], q.gpu[8], q.gpu[9]};
+        q.reference = table.radiance(
+            scatterlut::airlight_query_from_points(v, d, l, q.gpu[10], q.gpu[11], q.gpu[12], q.gpu[13]));
+        q.label = "points";
+        out.push_back(q);
+    }
+    return out;
+}
+
+const std::vector<Query> &queries() {
+    static const std::vector<Query> q = make_queries();
+    return q;
+}
+
+// Which branches of the C++ radiance a radiance query takes (to prove the queries cover
+// them all): the regime at each end, the theta-integral fallback, the limits.
+struct Branches {
+    bool zero = false, divergent = false, infinite_ray = false, fallback = false;
+    int regime_viewer = -1, regime_far = -1;
+};
+
+Branches radiance_branches(const Query &q) {
+    const scatterlut::AirlightTable &table = airlight_table();
+    Branches b;
+    const double gamma = std::atan2(static_cast<double>(q.gpu[5]), static_cast<double>(q.gpu[6]));
+    slut_airlight_geometry g;
+    slut_airlight_setup(q.gpu[1], q.gpu[2], q.gpu[3], q.gpu[4], std::sin(gamma), std::cos(gamma), q.gpu[7], &g);
+    b.zero = g.kind == 1;
+    b.divergent = g.kind == 2;
+    if (g.kind != 0) return b;
+    b.infinite_ray = g.w1 == 0.0;
+    b.regime_viewer = slut_gs_regime(g.u, g.w2, table.u_max(), table.w_min());
+    const double gs2 = table.scaled_tail(g.u, g.w2, g.a2);
+    double gs1 = 0.0;
+    if (!b.infinite_ray) {
+        b.regime_far = slut_gs_regime(g.u, g.w1, table.u_max(), table.w_min());
+        gs1 = table.scaled_tail(g.u, g.w1, g.a1);
+    }
+    const double viewer_term = g.w2 / g.sin_gamma * gs2;
+    const double far_term = b.infinite_ray ? 0.0 : g.far_attenuation * g.w1 / g.sin_gamma * gs1;
+    b.fallback = far_term > 0.5 * viewer_term;
+    return b;
+}
+
+// ------------------------------------------------------------------ shader wrappers
+
+// Declarations and main() of the compute shader that evaluates the queries. The GLSL and
+// HLSL versions bind the same resources at the same binding numbers: 0 the table,
+// 1 the queries, 2 the results, 3 the parameters (std140: u_max, u_scale, u_count,
+// w_min, w_count, n_queries).
+std::string glsl_compute_source(bool hardware_filter) {
+    std::string s = "#version 430\n";
+    if (hardware_filter) s += "#define SLUT_AIRLIGHT_HARDWARE_FILTER\n";
+    s += R"glsl(
+layout(local_size_x = 64) in;
+layout(binding = 0) uniform sampler2D slut_test_table;
+layout(std430, binding = 1) readonly buffer SlutTestQueries { float q[]; };
+layout(std430, binding = 2) writeonly buffer SlutTestResults { float r[]; };
+layout(std140, binding = 3) uniform SlutTestParams {
+    float u_max; float u_scale; int u_count; float w_min; int w_count; int n_queries;
+};
+)glsl";
+    s += glsl_snippet();
+    s += R"glsl(
+void main() {
+    int i = int(gl_GlobalInvocationID.x);
+    if (i >= n_queries) return;
+    SlutAirlightTable t = slut_airlight_table(u_max, u_scale, u_count, w_min, w_count);
+    int b = 16 * i;
+    int mode = int(q[b]);
+    float result;
+    if (mode == 0) {
+        result = slut_airlight_scaled_tail_uw(slut_test_table, t, q[b + 1], q[b + 2]);
+    } else if (mode == 1) {
+        result = slut_airlight_radiance(slut_test_table, t, q[b + 1], q[b + 2], q[b + 3],
+                                        q[b + 4], q[b + 5], q[b + 6], q[b + 7]);
+    } else {
+        result = slut_airlight_radiance_points(slut_test_table, t,
+            vec3(q[b + 1], q[b + 2], q[b + 3]), vec3(q[b + 4], q[b + 5], q[b + 6]),
+            vec3(q[b + 7], q[b + 8], q[b + 9]), q[b + 10], q[b + 11], q[b + 12], q[b + 13]);
+    }
+    r[i] = result;
+}
+)glsl";
+    return s;
+}
+
+std::string hlsl_compute_source(bool hardware_filter) {
+    std::string s;
+    if (hardware_filter) s += "#define SLUT_AIRLIGHT_HARDWARE_FILTER\n";
+    s += R"hlsl(
+[[vk::binding(0)]] Texture2D<float> slut_test_table;
+[[vk::binding(4)]] SamplerState slut_test_sampler;
+[[vk::binding(1)]] StructuredBuffer<float> q;
+[[vk::binding(2)]] RWStructuredBuffer<float> r;
+[[vk::binding(3)]] cbuffer SlutTestParams {
+    float u_max; float u_scale; int u_count; float w_min; int w_count; int n_queries;
+};
+)hlsl";
+    s += hlsl_snippet();
+    s += R"hlsl(
+[numthreads(64, 1, 1)]
+void main(uint3 id : SV_DispatchThreadID) {
+    int i = int(id.x);
+    if (i >= n_queries) return;
+    SlutAirlightTable t = slut_airlight_table(u_max, u_scale, u_count, w_min, w_count);
+    int b = 16 * i;
+    int mode = int(q[b]);
+    float result;
+    if (mode == 0) {
+        result = slut_airlight_scaled_tail_uw(slut_test_table, slut_test_sampler, t, q[b + 1], q[b + 2]);
+    } else if (mode == 1) {
+        result = slut_airlight_radiance(slut_test_table, slut_test_sampler, t, q[b + 1], q[b + 2],
+                                        q[b + 3], q[b + 4], q[b + 5], q[b + 6], q[b + 7]);
+    } else {
+        result = slut_airlight_radiance_points(slut_test_table, slut_test_sampler, t,
+            float3(q[b + 1], q[b + 2], q[b + 3]), float3(q[b + 4], q[b + 5], q[b + 6]),
+            float3(q[b + 7], q[b + 8], q[b + 9]), q[b + 10], q[b + 11], q[b + 12], q[b + 13]);
+    }
+    r[i] = result;
+}
+)hlsl";
+    return s;
+}
+
+// A fragment / pixel shader using the snippet as an engine would (compile checks only).
+std::string glsl_fragment_source(bool hardware_filter) {
+    std::string s = "#version 330\n";
+    if (hardware_filter) s += "#define SLUT_AIRLIGHT_HARDWARE_FILTER\n";
+    s += "uniform sampler2D airlight_table;\nuniform vec4 table_meta; // u_max, u_scale, w_min, -\n"
+         "uniform ivec2 table_counts;\nuniform vec3 light_pos;\nuniform vec3 medium; // sigma_s, sigma_a, I0\n"
+         "in vec3 world_pos;\nin vec3 eye_pos;\nout vec4 colour;\n";
+    s += glsl_snippet();
+    s += R"glsl(
+void main() {
+    SlutAirlightTable t = slut_airlight_table(table_meta.x, table_meta.y, table_counts.x,
+                                              table_meta.z, table_counts.y);
+    float L = slut_airlight_radiance_points(airlight_table, t, eye_pos, world_pos - eye_pos,
+                                            light_pos, length(world_pos - eye_pos),
+                                            medium.x, medium.y, medium.z);
+    colour = vec4(vec3(L), 1.0);
+}
+)glsl";
+    return s;
+}
+
+std::string hlsl_pixel_source(bool hardware_filter) {
+    std::string s;
+    if (hardware_filter) s += "#define SLUT_AIRLIGHT_HARDWARE_FILTER\n";
+    s += "Texture2D<float> airlight_table : register(t0);\nSamplerState airlight_sampler : register(s0);\n"
+         "cbuffer Fog : register(b0) { float4 table_meta; int2 table_counts; float3 light_pos; float3 medium; };\n";
+    s += hlsl_snippet();
+    s += R"hlsl(
+float4 main(float3 world_pos : TEXCOORD0, float3 eye_pos : TEXCOORD1) : SV_Target {
+    SlutAirlightTable t = slut_airlight_table(table_meta.x, table_meta.y, table_counts.x,
+                                              table_meta.z, table_counts.y);
+    float L = slut_airlight_radiance_points(airlight_table, airlight_sampler, t, eye_pos,
+                                            world_pos - eye_pos, light_pos,
+                                            length(world_pos - eye_pos), medium.x, medium.y,
+                                            medium.z);
+    return float4(L, L, L, 1.0);
+}
+)hlsl";
+    return s;
+}
+
+// glslangValidator on a source written to the scratch directory; "" on success, else the
+// command and its output.
+std::string glslang(const std::string &file_name, const std::string &source, const std::string &options) {
+    const std::string path = scratch_dir() + "/" + file_name;
+    write_text(path, source);
+    const std::string command = quoted(kGlslang) + " " + options + " " + quoted(path);
+    std::string output;
+    const int rc = run_command(command, &output);
+    return rc == 0 ? "" : command + "\n" + output;
+}
+
+// HLSL -> SPIR-V (glslang) -> GLSL 4.30 (spirv-cross). Empty string and *error on failure.
+std::string hlsl_to_glsl(bool hardware_filter, std::string *error) {
+    const std::string tag = hardware_filter ? "hw" : "fetch";
+    const std::string spv = scratch_dir() + "/run_" + tag + ".spv";
+    const std::string glsl = scratch_dir() + "/run_" + tag + ".comp";
+    std::string e = glslang("run_" + tag + ".hlsl", hlsl_compute_source(hardware_filter),
+                            "-D -V -e main -S comp -o " + quoted(spv));
+    if (!e.empty()) {
+        *error = e;
+        return "";
+    }
+    std::string output;
+    const std::string command = quoted(kSpirvCross) + " --version 430 --no-es " + quoted(spv) + " --output " + quoted(glsl);
+    if (run_command(command, &output) != 0) {
+        *error = command + "\n" + output;
+        return "";
+    }
+    return read_text(glsl);
+}
+
+// ---------------------------------------------------------------------- comparisons
+
+// Tolerances (relative, against the double C++ sampler on the same float-rounded table
+// and inputs; measured on Mesa llvmpipe, see docs/SHADERS.md):
+//  - Gs, texelFetch path: 1e-5 (measured 3e-6). The shader's float arithmetic: the texel
+//    position x*(n - 1) carries ~1e-5 texel of rounding (the log of a ~20-unit warp over
+//    127 cells) times |d ln Gs| per cell (<= 0.28 here), exp of an ln Gs down to ~-15
+//    (~1e-6), and the asymptotic forms' float series (~1e-6).
+//  - radiance: 1e-5 + 4e-7 * sigma_t D (measured 6e-6 for sigma_t D <= 13.8, 1.1e-5 at
+//    82). The same Gs errors, at most doubled by the difference of the two ends (the
+//    theta-integral takes over beyond a factor 2) and the float theta-integral (~1e-6);
+//    then e^{-sigma_t D}: its float argument is rounded twice (sigma_s + sigma_a, times
+//    D: 1.2e-7 * sigma_t D) and GLSL allows exp (3 + 2|x|) ulp (up to 2.4e-7 * |x|).
+//  - hardware filter: the bilinear weights are the GPU's. Many GPUs use 8-bit fixed
+//    point (a weight error up to 1/512): the filtered ln Gs is then off by up to that
+//    error times the largest jump of ln Gs across a cell. The test measures the weight
+//    error on the running GPU (hardware_filter_weight_error) and adds error x jump to
+//    the tolerances above: llvmpipe filters R32F with float weights, so there the
+//    hardware path is as good as the texelFetch one.
+constexpr double kTolGs = 1e-5, kTolRadiance = 1e-5, kTolPerOpticalDistance = 4e-7;
+
+
+double rel_err(double got, double want) {
+    if (std::isinf(want) || std::isinf(got)) return (got == want) ? 0.0 : std::numeric_limits<double>::infinity();
+    if (std::isnan(got)) return std::numeric_limits<double>::infinity();
+    if (want == 0.0) return got == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
+    return std::fabs(got - want) / std::fabs(want);
+}
+
+struct Stats {
+    double max = 0, p99 = 0, median = 0;
+    double max_ratio = 0; // worst error / tolerance
+    size_t count = 0, worst = 0, worst_ratio = 0;
+};
+
+// Relative errors of one category, and their ratio to a per-query tolerance. References
+// below kFloor (radiance that float cannot hold to its full precision) are compared
+// absolutely against kFloor.
+constexpr double kFloor = 1e-30;
+
+template <class Tolerance>
+Stats stats_for(const std::vector<float> &got, const std::string &label, const Tolerance &tolerance) {
+    std::vector<double> errs;
+    Stats st;
+    for (size_t i = 0; i < queries().size(); ++i) {
+        const Query &q = queries()[i];
+        if (q.label != label) continue;
+        double e = rel_err(got[i], q.reference);
+        if (std::isfinite(q.reference) && std::fabs(q.reference) < kFloor && std::isfinite(got[i]))
+            e = std::fabs(got[i] - q.reference) / kFloor;
+        errs.push_back(e);
+        if (e >= st.max) {
+            st.max = e;
+            st.worst = i;
+        }
+        const double ratio = e / tolerance(q);
+        if (ratio >= st.max_ratio) {
+            st.max_ratio = ratio;
+            st.worst_ratio = i;
+        }
+    }
+    st.count = errs.size();
+    if (errs.empty()) return st;
+    std::sort(errs.begin(), errs.end());
+    st.p99 = errs[static_cast<size_t>(0.99 * static_cast<double>(errs.size() - 1))];
+    st.median = errs[errs.size() / 2];
+    return st;
+}
+
+// sigma_t D of a radiance or points query (float's exp(-sigma_t D) error grows with it).
+double optical_distance(const Query &q) {
+    if (q.gpu[0] == kRadiance) return (static_cast<double>(q.gpu[1]) + q.gpu[2]) * q.gpu[4];
+    if (q.gpu[0] == kPoints) {
+        double d2 = 0;
+        for (int k = 0; k < 3; ++k) d2 += (static_cast<double>(q.gpu[7 + k]) - q.gpu[1 + k]) * (static_cast<double>(q.gpu[7 + k]) - q.gpu[1 + k]);
+        return (static_cast<double>(q.gpu[11]) + q.gpu[12]) * std::sqrt(d2);
+    }
+    return 0.0;
+}
+
+// ------------------------------------------------------------------------- EGL / GL
+
+#if SLUT_HAVE_EGL
+
+#define SLUT_GL_FUNCTIONS(X)                                                               \
+    X(PFNGLGETSTRINGPROC, glGetString)                                                     \
+    X(PFNGLGETERRORPROC, glGetError)                                                       \
+    X(PFNGLCREATESHADERPROC, glCreateShader)                                               \
+    X(PFNGLSHADERSOURCEPROC, glShaderSource)                                               \
+    X(PFNGLCOMPILESHADERPROC, glCompileShader)                                             \
+    X(PFNGLGETSHADERIVPROC, glGetShaderiv)                                                 \
+    X(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog)                                       \
+    X(PFNGLDELETESHADERPROC, glDeleteShader)                                               \
+    X(PFNGLCREATEPROGRAMPROC, glCreateProgram)                                             \
+    X(PFNGLATTACHSHADERPROC, glAttachShader)                                               \
+    X(PFNGLLINKPROGRAMPROC, glLinkProgram)                                                 \
+    X(PFNGLGETPROGRAMIVPROC, glGetProgramiv)                                               \
+    X(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog)                                     \
+    X(PFNGLDELETEPROGRAMPROC, glDeleteProgram)                                             \
+    X(PFNGLUSEPROGRAMPROC, glUseProgram)                                                   \
+    X(PFNGLGETACTIVEUNIFORMPROC, glGetActiveUniform)                                       \
+    X(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation)                                   \
+    X(PFNGLUNIFORM1IPROC, glUniform1i)                                                     \
+    X(PFNGLGENTEXTURESPROC, glGenTextures)                                                 \
+    X(PFNGLDELETETEXTURESPROC, glDeleteTextures)                                           \
+    X(PFNGLBINDTEXTUREPROC, glBindTexture)                                                 \
+    X(PFNGLACTIVETEXTUREPROC, glActiveTexture)                                             \
+    X(PFNGLTEXIMAGE2DPROC, glTexImage2D)                                                   \
+    X(PFNGLTEXPARAMETERIPROC, glTexParameteri)                                             \
+    X(PFNGLPIXELSTOREIPROC, glPixelStorei)                                                 \
+    X(PFNGLGENBUFFERSPROC, glGenBuffers)                                                   \
+    X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers)                                             \
+    X(PFNGLBINDBUFFERPROC, glBindBuffer)                                                   \
+    X(PFNGLBINDBUFFERBASEPROC, glBindBufferBase)                                           \
+    X(PFNGLBUFFERDATAPROC, glBufferData)                                                   \
+    X(PFNGLGETBUFFERSUBDATAPROC, glGetBufferSubData)                                       \
+    X(PFNGLDISPATCHCOMPUTEPROC, glDispatchCompute)                                         \
+    X(PFNGLMEMORYBARRIERPROC, glMemoryBarrier)                                             \
+    X(PFNGLFINISHPROC, glFinish)
+
+struct Gl {
+#define SLUT_GL_MEMBER(type, name) type name = nullptr;
+    SLUT_GL_FUNCTIONS(SLUT_GL_MEMBER)
+#undef SLUT_GL_MEMBER
+};
+
+// One surfaceless EGL display and OpenGL 4.3 core context for the whole process.
+struct GpuContext {
+    bool ok = false;
+    std::string why_not; // when !ok
+    std::string renderer;
+    Gl gl;
+    EGLDisplay display = EGL_NO_DISPLAY;
+    EGLContext context = EGL_NO_CONTEXT;
+
+    GpuContext() {
+        const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+        if (!client || !std::strstr(client, "EGL_MESA_platform_surfaceless")) {
+            why_not = "EGL_MESA_platform_surfaceless is not available (install libegl-mesa0 and "
+                      "libgl1-mesa-dri)";
+            return;
+        }
+        auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+            eglGetProcAddress("eglGetPlatformDisplayEXT"));
+        if (!get_platform_display) {
+            why_not = "eglGetPlatformDisplayEXT is missing";
+            return;
+        }
+        display = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        EGLint major = 0, minor = 0;
+        if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor)) {
+            why_not = "no surfaceless EGL display could be initialised (EGL error 0x" + hex(eglGetError()) +
+                      "; is libgl1-mesa-dri installed?)";
+            return;
+        }
+        if (!eglBindAPI(EGL_OPENGL_API)) {
+            why_not = "eglBindAPI(EGL_OPENGL_API) failed";
+            return;
+        }
+        const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 3,
+                                     EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                     EGL_NONE};
+        context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+        if (context == EGL_NO_CONTEXT) {
+            why_not = "no OpenGL 4.3 core context (EGL error 0x" + hex(eglGetError()) + ")";
+            return;
+        }
+        if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+            why_not = "eglMakeCurrent without a surface failed (EGL_KHR_surfaceless_context?)";
+            return;
+        }
+#define SLUT_GL_LOAD(type, name)                                                           \
+    gl.name = reinterpret_cast<type>(eglGetProcAddress(#name));                            \
+    if (!gl.name) {                                                                        \
+        why_not = "OpenGL entry point " #name " is missing";                               \
+        return;                                                                            \
+    }
+        SLUT_GL_FUNCTIONS(SLUT_GL_LOAD)
+#undef SLUT_GL_LOAD
+        renderer = std::string(reinterpret_cast<const char *>(gl.glGetString(GL_RENDERER))) + " | " +
+                   reinterpret_cast<const char *>(gl.glGetString(GL_VERSION));
+        ok = true;
+    }
+    ~GpuContext() {
+        if (display != EGL_NO_DISPLAY) {
+            eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
+            eglTerminate(display);
+        }
+    }
+    static std::string hex(EGLint e) {
+        char buf[16];
+        std::snprintf(buf, sizeof buf, "%04x", static_cast<unsigned>(e));
+        return buf;
+    }
+};
+
+GpuContext &gpu() {
+    static GpuContext context;
+    return context;
+}
+
+// Compiles and links one compute shader; "" on success, else the log.
+std::string build_program(const Gl &gl, const std::string &source, GLuint *program) {
+    GLuint shader = gl.glCreateShader(GL_COMPUTE_SHADER);
+    const char *text = source.c_str();
+    gl.glShaderSource(shader, 1, &text, nullptr);
+    gl.glCompileShader(shader);
+    GLint ok = 0;
+    gl.glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        std::vector<char> log(16384, '\0');
+        gl.glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
+        gl.glDeleteShader(shader);
+        return std::string("compile failed:\n") + log.data();
+    }
+    *program = gl.glCreateProgram();
+    gl.glAttachShader(*program, shader);
+    gl.glLinkProgram(*program);
+    gl.glDeleteShader(shader);
+    gl.glGetProgramiv(*program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        std::vector<char> log(16384, '\0');
+        gl.glGetProgramInfoLog(*program, static_cast<GLsizei>(log.size()), nullptr, log.data());
+        gl.glDeleteProgram(*program);
+        return std::string("link failed:\n") + log.data();
+    }
+    return "";
+}
+
+// Runs a compute shader over n_items (64 per group): binding 0 a width x height R32F
+// texture with GL_LINEAR filtering and CLAMP_TO_EDGE (what the hardware-filter path needs;
+// the texelFetch path ignores both), 1 `inputs`, 2 the n_items results, 3 `params` (a
+// uniform block). The results, or an error in *error.
+std::vector<float> run_compute(const std::string &source, const std::vector<float> &texels, int width, int height,
+                               const std::vector<float> &inputs, size_t n_items, const void *params,
+                               size_t params_bytes, std::string *error) {
+    const Gl &gl = gpu().gl;
+    GLuint program = 0;
+    *error = build_program(gl, source, &program);
+    if (!error->empty()) return {};
+    gl.glUseProgram(program);
+    // Every sampler uniform (spirv-cross names its combined samplers itself) on unit 0.
+    GLint n_uniforms = 0;
+    gl.glGetProgramiv(program, GL_ACTIVE_UNIFORMS, &n_uniforms);
+    for (GLint i = 0; i < n_uniforms; ++i) {
+        char name[256];
+        GLint size = 0;
+        GLenum type = 0;
+        gl.glGetActiveUniform(program, static_cast<GLuint>(i), sizeof name, nullptr, &size, &type, name);
+        if (type == GL_SAMPLER_2D) gl.glUniform1i(gl.glGetUniformLocation(program, name), 0);
+    }
+    GLuint texture = 0;
+    gl.glGenTextures(1, &texture);
+    gl.glActiveTexture(GL_TEXTURE0);
+    gl.glBindTexture(GL_TEXTURE_2D, texture);
+    gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl.glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, width, height, 0, GL_RED, GL_FLOAT, texels.data());
+    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+
+    GLuint buffers[3];
+    gl.glGenBuffers(3, buffers);
+    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[0]);
+    gl.glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(inputs.size() * sizeof(float)), inputs.data(),
+                    GL_STATIC_DRAW);
+    gl.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers[0]);
+    std::vector<float> results(n_items, std::numeric_limits<float>::quiet_NaN());
+    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[1]);
+    gl.glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(results.size() * sizeof(float)),
+                    results.data(), GL_DYNAMIC_READ);
+    gl.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, buffers[1]);
+    gl.glBindBuffer(GL_UNIFORM_BUFFER, buffers[2]);
+    gl.glBufferData(GL_UNIFORM_BUFFER, static_cast<GLsizeiptr>(params_bytes), params, GL_STATIC_DRAW);
+    gl.glBindBufferBase(GL_UNIFORM_BUFFER, 3, buffers[2]);
+
+    gl.glDispatchCompute(static_cast<GLuint>((n_items + 63) / 64), 1, 1);
+    gl.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[1]);
+    gl.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(results.size() * sizeof(float)),
+                          results.data());
+    gl.glFinish();
+    const GLenum err = gl.glGetError();
+    if (err != GL_NO_ERROR) *error = "OpenGL error 0x" + GpuContext::hex(static_cast<EGLint>(err));
+    gl.glDeleteBuffers(3, buffers);
+    gl.glDeleteTextures(1, &texture);
+    gl.glUseProgram(0);
+    gl.glDeleteProgram(program);
+    return results;
+}
+
+// Every query through a compute shader built from glsl/hlsl_compute_source (or its
+// spirv-cross translation), on the test table.
+std::vector<float> run_on_gpu(const std::string &source, std::string *error) {
+    const scatterlut::Table &table = airlight_table().table();
+    const std::vector<float> texels(table.values.begin(), table.values.end());
+    const std::vector<Query> &qs = queries();
+    std::vector<float> packed;
+    for (const Query &q : qs) packed.insert(packed.end(), q.gpu.begin(), q.gpu.end());
+    struct Params {
+        float u_max, u_scale;
+        int32_t u_count;
+        float w_min;
+        int32_t w_count, n_queries, pad[2];
+    } params{static_cast<float>(kUMax), static_cast<float>(kUScale), kCountU, static_cast<float>(kWMin),
+             kCountW, static_cast<int32_t>(qs.size()), {0, 0}};
+    return run_compute(source, texels, kCountU, kCountW, packed, qs.size(), &params, sizeof params, error);
+}
+
+// The hardware filter's weight error: GL_LINEAR on a 2x1 ramp texture [0, 1] at texel
+// coordinate f between the two centres must return f; returns max |result - f| over 4096
+// fractions of a golden-ratio sequence (every mantissa bit in use): ~6e-8 with float
+// weights, up to 1/512 with 8-bit fixed-point weights; negative on error.
+double hardware_filter_weight_error() {
+    static const double measured = [] {
+        const std::string source = R"glsl(#version 430
+layout(local_size_x = 64) in;
+layout(binding = 0) uniform sampler2D ramp;
+layout(std430, binding = 1) readonly buffer Fractions { float f[]; };
+layout(std430, binding = 2) writeonly buffer Results { float r[]; };
+layout(std140, binding = 3) uniform Params { int n; };
+void main() {
+    int i = int(gl_GlobalInvocationID.x);
+    if (i < n) r[i] = textureLod(ramp, vec2((f[i] + 0.5) / 2.0, 0.5), 0.0).r;
+}
+)glsl";
+        const int n = 4096;
+        std::vector<float> f(n);
+        for (int i = 0; i < n; ++i) f[i] = static_cast<float>(std::fmod(0.5 + i * 0.6180339887498949, 1.0)); // all 24 bits used
+        const int32_t params[4] = {n, 0, 0, 0};
+        std::string error;
+        const std::vector<float> r = run_compute(source, {0.0f, 1.0f}, 2, 1, f, n, params, sizeof params, &error);
+        if (!error.empty()) return -1.0;
+        double worst = 0;
+        for (int i = 0; i < n; ++i) worst = std::max(worst, std::fabs(static_cast<double>(r[i]) - f[i]));
+        return worst;
+    }();
+    return measured;
+}
+
+// The largest change of the stored ln Gs across one cell (u and w steps added): a filter
+// weight error e moves the interpolated ln Gs, i.e. Gs relatively, by at most e times this.
+double max_cell_jump() {
+    const scatterlut::Table &t = airlight_table().table();
+    double worst = 0;
+    for (int j = 0; j + 1 < kCountW; ++j)
+        for (int i = 0; i + 1 < kCountU; ++i) {
+            const size_t k = static_cast<size_t>(j) * kCountU + i;
+            worst = std::max(worst, std::fabs(t.values[k + 1] - t.values[k]) + std::fabs(t.values[k + kCountU] - t.values[k]));
+        }
+    return worst;
+}
+
+#endif // SLUT_HAVE_EGL
+
+// Checks one run against the C++ sampler: Gs within tol_gs; radiance within
+// tol_radiance + kTolPerOpticalDistance * sigma_t D. Per category the worst, p99 and
+// median relative errors are printed and recorded as test properties.
+void expect_agreement(const std::vector<float> &got, const std::string &run, double tol_gs, double tol_radiance,
+                      ::testing::Test *test) {
+    for (const std::string label : {"Gs", "radiance", "points"}) {
+        const auto tolerance = [&](const Query &q) {
+            return label == "Gs" ? tol_gs : tol_radiance + kTolPerOpticalDistance * optical_distance(q);
+        };
+        const Stats st = stats_for(got, label, tolerance);
+        const Query &worst = queries()[st.worst];
+        std::printf("[ %s ] %-8s n=%zu  max %.3g  p99 %.3g  median %.3g  (worst: %s -> gpu %.9g, C++ %.9g)\n",
+                    run.c_str(), label.c_str(), st.count, st.max, st.p99, st.median, describe(worst.gpu).c_str(),
+                    static_cast<double>(got[st.worst]), worst.reference);
+        const Query &w = queries()[st.worst_ratio];
+        EXPECT_LE(st.max_ratio, 1.0) << run << " " << label << ": query " << describe(w.gpu) << " gave "
+                                     << got[st.worst_ratio] << ", the C++ sampler " << w.reference
+                                     << ": relative error " << rel_err(got[st.worst_ratio], w.reference)
+                                     << " > tolerance " << tolerance(w);
+        test->RecordProperty(run + "_" + label + "_max_rel_err", std::to_string(st.max));
+        test->RecordProperty(run + "_" + label + "_median_rel_err", std::to_string(st.median));
+    }
+    // Never NaN, never negative.
+    size_t bad = 0;
+    for (float v : got) bad += (std::isnan(v) || v < 0.0f) ? 1 : 0;
+    EXPECT_EQ(bad, 0u) << run << ": NaN or negative results";
+}
+
+} // namespace
+
+// ------------------------------------------------------------------------- sources
+
+// The two files share one body, so that what runs as GLSL below is also what the HLSL
+// users compile; only the preludes (texture access, infinity, constant arrays) differ.
+TEST(ShaderSources, GlslAndHlslShareOneBody) {
+    const std::string g = shared_body(glsl_snippet()), h = shared_body(hlsl_snippet());
+    ASSERT_FALSE(g.empty()) << "SHARED BODY markers missing in scatterlut_airlight.glsl";
+    ASSERT_FALSE(h.empty()) << "SHARED BODY markers missing in scatterlut_airlight.hlsl";
+    if (g != h) {
+        size_t k = 0;
+        while (k < g.size() && k < h.size() && g[k] == h[k]) ++k;
+        const size_t line = static_cast<size_t>(std::count(g.begin(), g.begin() + static_cast<long>(k), '\n')) + 1;
+        FAIL() << "the shared bodies differ from body line " << line << ":\n  glsl: "
+               << g.substr(k, 80) << "\n  hlsl: " << h.substr(k, 80);
+    }
+}
+
+// ASCII only: GLSL before 4.20 and some HLSL toolchains reject other bytes even in comments.
+TEST(ShaderSources, AreAscii) {
+    for (const std::string *text : {&glsl_snippet(), &hlsl_snippet()}) {
+        const auto it = std::find_if(text->begin(), text->end(), [](char c) { return static_cast<unsigned char>(c) > 127; });
+        EXPECT_EQ(it, text->end()) << "non-ASCII byte at offset " << (it - text->begin());
+    }
+}
+
+// Warp ids and regimes as in kernels/slut_axes.h and slut_airlight.h (ids are stored in
+// files), and the Gauss-Legendre rule as the C header's rounded to float.
+TEST(ShaderSources, ConstantsMatchTheCHeaders) {
+    const std::string body = shared_body(glsl_snippet());
+    const std::vector<std::pair<std::string, int>> ids = {
+        {"SLUT_WARP_LINEAR", SLUT_WARP_LINEAR}, {"SLUT_WARP_LOG", SLUT_WARP_LOG},
+        {"SLUT_WARP_LOG1P", SLUT_WARP_LOG1P},   {"SLUT_WARP_ASINH_COT", SLUT_WARP_ASINH_COT},
+        {"SLUT_WARP_SQRT1P", SLUT_WARP_SQRT1P}, {"SLUT_GS_TABLE", SLUT_GS_TABLE},
+        {"SLUT_GS_LARGE_U", SLUT_GS_LARGE_U},   {"SLUT_GS_SMALL_W", SLUT_GS_SMALL_W}};
+    for (const auto &[name, value] : ids) {
+        std::smatch m;
+        const std::regex re("#define " + name + " (-?[0-9]+)\\s");
+        ASSERT_TRUE(std::regex_search(body, m, re)) << name << " is not defined in the shared body";
+        EXPECT_EQ(std::stoi(m[1]), value) << name;
+    }
+    EXPECT_EQ(SLUT_WARP_COUNT, 5) << "a new warp: add it to slut_warp_forward in the snippets";
+    for (const std::string *text : {&glsl_snippet(), &hlsl_snippet()}) {
+        for (const char *array : {"slut_gl16_x", "slut_gl16_w"}) {
+            const size_t at = text->find(std::string(array) + "[8] =");
+            ASSERT_NE(at, std::string::npos) << array;
+            const std::string list = text->substr(text->find_first_of("({", at + 12), 400);
+            std::vector<double> values;
+            const std::regex number("[0-9]+\\.[0-9]+");
+            for (auto it = std::sregex_iterator(list.begin(), list.end(), number);
+                 it != std::sregex_iterator() && values.size() < 8; ++it)
+                values.push_back(std::stod(it->str()));
+            ASSERT_EQ(values.size(), 8u) << array;
+            for (int k = 0; k < 8; ++k) {
+                const double want = std::string(array) == "slut_gl16_x" ? slut_gl16_x[k] : slut_gl16_w[k];
+                EXPECT_EQ(static_cast<float>(values[k]), static_cast<float>(want)) << array << "[" << k << "]";
+            }
+        }
+    }
+}
+
+// The comparison below is only as good as its queries: each regime of Gs and each
+// branch of the radiance must be exercised (at least 20 times).
+TEST(ShaderQueries, CoverEveryRegimeAndBranch) {
+    const scatterlut::AirlightTable &table = airlight_table();
+    int gs_regime[3] = {0, 0, 0}, viewer_regime[3] = {0, 0, 0}, far_regime[3] = {0, 0, 0};
+    int zero = 0, divergent = 0, infinite_ray = 0, fallback = 0, u_zero = 0;
+    for (const Query &q : queries()) {
+        if (q.label == "Gs") {
+            ++gs_regime[slut_gs_regime(q.gpu[1], q.gpu[2], table.u_max(), table.w_min())];
+            u_zero += q.gpu[1] == 0.0f;
+        } else if (q.label == "radiance") {
+            const Branches b = radiance_branches(q);
+            zero += b.zero;
+            divergent += b.divergent;
+            infinite_ray += b.infinite_ray;
+            fallback += b.fallback;
+            if (b.regime_viewer >= 0) ++viewer_regime[b.regime_viewer];
+            if (b.regime_far >= 0) ++far_regime[b.regime_far];
+        }
+    }
+    std::printf("Gs: table %d, large u %d, small w %d, u = 0 %d | radiance: viewer end table/large-u/small-w "
+                "%d/%d/%d, far end %d/%d/%d, infinite %d, theta-integral %d, zero %d, divergent %d\n",
+                gs_regime[0], gs_regime[1], gs_regime[2], u_zero, viewer_regime[0], viewer_regime[1],
+                viewer_regime[2], far_regime[0], far_regime[1], far_regime[2], infinite_ray, fallback, zero,
+                divergent);
+    for (int r = 0; r < 3; ++r) {
+        EXPECT_GE(gs_regime[r], 20) << "Gs regime " << r;
+        EXPECT_GE(viewer_regime[r], 20) << "viewer-end regime " << r;
+        EXPECT_GE(far_regime[r], 20) << "far-end regime " << r;
+    }
+    EXPECT_GE(u_zero, 20);
+    EXPECT_GE(infinite_ray, 20);
+    EXPECT_GE(fallback, 20);
+    EXPECT_GE(zero, 3);
+    EXPECT_GE(divergent, 20);
+}
+
+// ------------------------------------------------------------------------- glslang
+
+TEST(ShaderGlslang, GlslCompilesForOpenGLAndVulkan) {
+    if (kGlslang.empty()) SLUT_SKIP_OR_FAIL("glslangValidator was not found at configure time (Debian: glslang-tools)");
+    for (bool hw : {false, true}) {
+        SCOPED_TRACE(hw ? "SLUT_AIRLIGHT_HARDWARE_FILTER" : "texelFetch path");
+        const std::string tag = hw ? "_hw" : "";
+        EXPECT_EQ(glslang("compute" + tag + ".comp", glsl_compute_source(hw), ""), "");
+        EXPECT_EQ(glslang("vk_compute" + tag + ".comp", glsl_compute_source(hw),
+                          "-V -o " + quoted(scratch_dir() + "/vk_compute" + tag + ".spv")),
+                  "");
+        EXPECT_EQ(glslang("fragment" + tag + ".frag", glsl_fragment_source(hw), ""), "");
+    }
+}
+
+TEST(ShaderGlslang, HlslCompilesAsComputeAndPixelShaders) {
+    if (kGlslang.empty()) SLUT_SKIP_OR_FAIL("glslangValidator was not found at configure time (Debian: glslang-tools)");
+    for (bool hw : {false, true}) {
+        SCOPED_TRACE(hw ? "SLUT_AIRLIGHT_HARDWARE_FILTER" : "Load path");
+        const std::string tag = hw ? "_hw" : "";
+        EXPECT_EQ(glslang("compute" + tag + ".hlsl", hlsl_compute_source(hw),
+                          "-D -V -e main -S comp -o " + quoted(scratch_dir() + "/compute_hlsl" + tag + ".spv")),
+                  "");
+        EXPECT_EQ(glslang("pixel" + tag + ".hlsl", hlsl_pixel_source(hw),
+                          "-D -V -e main -S frag -o " + quoted(scratch_dir() + "/pixel_hlsl" + tag + ".spv")),
+                  "");
+    }
+}
+
+// ----------------------------------------------------------------------------- GPU
+
+class GpuShaders : public ::testing::Test {
+protected:
+    void SetUp() override {
+#if SLUT_HAVE_EGL
+        if (!gpu().ok) SLUT_SKIP_OR_FAIL("no GPU context: " + gpu().why_not);
+        RecordProperty("renderer", gpu().renderer);
+        std::printf("[ renderer ] %s\n", gpu().renderer.c_str());
+#else
+        SLUT_SKIP_OR_FAIL("built without EGL/OpenGL headers and libraries (Debian: libegl-dev, libgl-dev)");
+#endif
+    }
+};
+
+TEST_F(GpuShaders, GlslMatchesTheCppSampler) {
+#if SLUT_HAVE_EGL
+    std::string error;
+    const std::vector<float> got = run_on_gpu(glsl_compute_source(false), &error);
+    ASSERT_EQ(error, "");
+    expect_agreement(got, "glsl", kTolGs, kTolRadiance, this);
+#endif
+}
+
+// The filter's weight precision on this GPU (reported; the hardware-path tolerances
+// follow from it). Any GPU worth using has at least 8 fractional bits.
+TEST_F(GpuShaders, MeasuresTheHardwareFilterWeights) {
+#if SLUT_HAVE_EGL
+    const double e = hardware_filter_weight_error();
+    ASSERT_GE(e, 0.0) << "the ramp shader failed";
+    std::printf("[ filter ] GL_LINEAR weight error %.3g (%.1f bits); max |d ln Gs| per cell %.3g\n", e,
+                e > 0 ? -std::log2(2.0 * e) : 24.0, max_cell_jump());
+    RecordProperty("filter_weight_error", std::to_string(e));
+    RecordProperty("max_ln_gs_jump_per_cell", std::to_string(max_cell_jump()));
+    EXPECT_LE(e, 1.0 / 256.0);
+#endif
+}
+
+#if SLUT_HAVE_EGL
+double hardware_tol_gs() { return kTolGs + 1.5 * hardware_filter_weight_error() * max_cell_jump(); }
+double hardware_tol_radiance() { return kTolRadiance + 3.0 * hardware_filter_weight_error() * max_cell_jump(); }
+#endif
+
+// The one-fetch path, GL_LINEAR on the ln values: the same up to the filter's weights.
+TEST_F(GpuShaders, GlslHardwareFilterAgreesToTheFilterPrecision) {
+#if SLUT_HAVE_EGL
+    ASSERT_GE(hardware_filter_weight_error(), 0.0);
+    std::string error;
+    const std::vector<float> got = run_on_gpu(glsl_compute_source(true), &error);
+    ASSERT_EQ(error, "");
+    expect_agreement(got, "glsl_hw", hardware_tol_gs(), hardware_tol_radiance(), this);
+#endif
+}
+
+TEST_F(GpuShaders, HlslMatchesTheCppSampler) {
+#if SLUT_HAVE_EGL
+    if (kGlslang.empty() || kSpirvCross.empty())
+        SLUT_SKIP_OR_FAIL("running the HLSL needs glslangValidator and spirv-cross (Debian: glslang-tools, spirv-cross)");
+    for (bool hw : {false, true}) {
+        std::string error;
+        const std::string glsl = hlsl_to_glsl(hw, &error);
+        ASSERT_EQ(error, "");
+        const std::vector<float> got = run_on_gpu(glsl, &error);
+        ASSERT_EQ(error, "");
+        if (hw)
+            expect_agreement(got, "hlsl_hw", hardware_tol_gs(), hardware_tol_radiance(), this);
+        else
+            expect_agreement(got, "hlsl", kTolGs, kTolRadiance, this);
+    }
+#endif
+}
