@@ -8,6 +8,7 @@
 
 extern "C" {
 #include "slut_airlight.h"
+#include "slut_nearlight.h"
 }
 
 namespace scatterlut {
@@ -58,17 +59,71 @@ void answer_airlight(const nlohmann::json &q, nlohmann::json &out, const EvalTab
     else put(out, "table", tables.airlight.front().radiance(a));
 }
 
+// The first near-light table covering (T, g, r, S), or null.
+const NearLightTable *covering(const EvalTables &tables, double T, double g, double r, double S) {
+    for (const auto &t : tables.near_light)
+        if (t.covers(T, g, r, S)) return &t;
+    return nullptr;
+}
+
+void vector_field(const nlohmann::json &q, const char *name, double *out) {
+    if (!q.contains(name) || !q.at(name).is_array() || q.at(name).size() != 3)
+        throw std::invalid_argument(std::string("field \"") + name + "\" must be an array of 3 numbers");
+    for (size_t k = 0; k < 3; ++k) {
+        if (!q.at(name).at(k).is_number()) throw std::invalid_argument(std::string("field \"") + name + "\" must hold numbers");
+        out[k] = q.at(name).at(k).get<double>();
+    }
+}
+
+void answer_N(const nlohmann::json &q, nlohmann::json &out, const EvalTables &tables) {
+    const double T = number_field(q, "T"), g = number_field(q, "g"), r = number_field(q, "r"), S = number_field(q, "S");
+    if (!(T > 0.0) || !std::isfinite(T)) throw std::invalid_argument("T must be finite and > 0");
+    if (!(g >= -1.0 && g <= 1.0)) throw std::invalid_argument("g must lie in [-1, 1]");
+    if (!(r >= 0.0)) throw std::invalid_argument("r must be >= 0");
+    if (!(S >= 0.0)) throw std::invalid_argument("S must be >= 0 (or \"inf\")");
+    const double H = slut_nl_H(T, g, S), E = slut_nl_E(T, g, r, S);
+    put(out, "exact", (H > 0.0 && std::isfinite(H)) ? E * H : H);
+    put(out, "E", E);
+    put(out, "H", H);
+    const NearLightTable *t = covering(tables, T, g, r, S);
+    if (t) put(out, "table", t->E(T, g, r, S) * H);
+    else out["table"] = nullptr;
+    put(out, "approx", slut_nl_N_thin(T, g, r, S));
+}
+
+void answer_near_light(const nlohmann::json &q, nlohmann::json &out, const EvalTables &tables) {
+    NearLightQuery n;
+    n.sigma_s_per_m = number_field(q, "sigma_s");
+    n.sigma_a_per_m = number_field(q, "sigma_a");
+    n.intensity_W_per_sr = number_field(q, "intensity");
+    vector_field(q, "normal", n.normal);
+    vector_field(q, "eye_dir", n.eye_dir);
+    vector_field(q, "light_pos", n.light_rel_m);
+    n.length_m = number_field(q, "length");
+    put(out, "exact", near_light_radiance_exact(n)); // validates the query
+    slut_nl_params p;
+    slut_nl_params_from_geometry(n.normal, n.eye_dir, n.light_rel_m, n.sigma_s_per_m + n.sigma_a_per_m, n.length_m, &p);
+    const NearLightTable *t = (p.kind == SLUT_NL_OK) ? covering(tables, p.T, p.g, p.r, p.S) : nullptr;
+    if (t) put(out, "table", t->radiance(n));
+    else if (p.kind == SLUT_NL_LIGHT_BELOW && !tables.near_light.empty()) out["table"] = 0.0;
+    else out["table"] = nullptr;
+    put(out, "approx", near_light_radiance_thin(n));
+    put(out, "distant", near_light_radiance_distant(n));
+}
+
 } // namespace
 
 nlohmann::json eval_query(const nlohmann::json &query, const EvalTables &tables) {
     if (!query.is_object()) throw std::invalid_argument("a query must be a JSON object");
     if (!query.contains("quantity") || !query.at("quantity").is_string())
-        throw std::invalid_argument("missing string field \"quantity\" (\"F\" or \"airlight\")");
+        throw std::invalid_argument("missing string field \"quantity\" (F, airlight, N or near_light)");
     const std::string quantity = query.at("quantity").get<std::string>();
     nlohmann::json out = query;
     if (quantity == "F") answer_F(query, out, tables);
     else if (quantity == "airlight") answer_airlight(query, out, tables);
-    else throw std::invalid_argument("unknown quantity \"" + quantity + "\" (expected \"F\" or \"airlight\")");
+    else if (quantity == "N") answer_N(query, out, tables);
+    else if (quantity == "near_light") answer_near_light(query, out, tables);
+    else throw std::invalid_argument("unknown quantity \"" + quantity + "\" (expected F, airlight, N or near_light)");
     return out;
 }
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scatterlut/airlight.hpp"
+#include "scatterlut/nearlight.hpp"
 #include "scatterlut/table.hpp"
 
 namespace scatterlut {
@@ -18,6 +19,7 @@ namespace scatterlut {
 // The tables eval samples, by kind; each query uses the first table that covers it.
 struct EvalTables {
     std::vector<AirlightTable> airlight;
+    std::vector<NearLightTable> near_light; // E3 and E4 tables
 };
 
 // Answers one parsed query: the query's fields plus the answer fields. Throws

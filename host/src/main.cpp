@@ -15,6 +15,7 @@
 
 #include "eval.hpp"
 #include "generate_airlight.hpp"
+#include "generate_nearlight.hpp"
 #include "opencl_device.hpp"
 #include "scatterlut/io.hpp"
 #include "version.hpp"
@@ -79,6 +80,7 @@ struct GenerateOptions {
     std::string storage = "f32";
     std::string device;
     AirlightPlan airlight;
+    NearLightPlan near_light; // the 3-D table; the 4-D one shares its T, g, r axes
 };
 
 void write_table(const Table &t, const std::string &out_dir, const std::string &stem, const std::string &format) {
@@ -106,21 +108,44 @@ int run_generate(const GenerateOptions &opt) {
     provenance.command_line = g_command_line;
     provenance.device = device.info().describe();
 
-    AirlightPlan plan = opt.airlight;
-    storage_from_string(opt.storage, &plan.storage);
+    Storage storage = Storage::F32;
+    storage_from_string(opt.storage, &storage);
     std::cout << "device: " << device.info().describe() << "\n";
-    const auto start = std::chrono::steady_clock::now();
-    Progress progress{isatty(STDERR_FILENO) != 0, "airlight_F"};
-    const Table table = generate_airlight_table(device, plan, provenance, std::ref(progress));
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const auto &a = table.accuracy;
-    std::printf("airlight_F: %d x %d (u x w), %s, %.1f KiB, %.2f s (integration + accuracy measurement)\n",
-                plan.n_u, plan.n_w, to_string(plan.storage),
-                static_cast<double>(table.node_count() * storage_bytes(plan.storage)) / 1024.0, seconds);
-    std::printf("  integration max rel %.2e; storage rounding max rel %.2e\n", a.integration_max_rel, a.storage_max_rel);
-    std::printf("  sampling of Gs: max rel %.2e, p99 %.2e, median %.2e over %llu points\n", a.sampling_max_rel,
-                a.sampling_p99_rel, a.sampling_median_rel, static_cast<unsigned long long>(a.sampling_points));
-    write_table(table, opt.out_dir, "airlight_F", opt.format);
+
+    auto report = [&](const Table &table, const std::string &stem, const std::string &shape, double seconds) {
+        const auto &a = table.accuracy;
+        std::printf("%s: %s, %s, %.1f KiB, %.2f s (integration + accuracy measurement)\n", stem.c_str(),
+                    shape.c_str(), to_string(table.storage),
+                    static_cast<double>(table.node_count() * storage_bytes(table.storage)) / 1024.0, seconds);
+        std::printf("  integration max rel %.2e; storage rounding max rel %.2e\n", a.integration_max_rel,
+                    a.storage_max_rel);
+        std::printf("  sampling: max rel %.2e, p99 %.2e, median %.2e over %llu points (%s)\n", a.sampling_max_rel,
+                    a.sampling_p99_rel, a.sampling_median_rel, static_cast<unsigned long long>(a.sampling_points),
+                    a.sampling_domain.c_str());
+        write_table(table, opt.out_dir, stem, opt.format);
+    };
+    auto seconds_since = [](std::chrono::steady_clock::time_point t0) {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    };
+
+    AirlightPlan air = opt.airlight;
+    air.storage = storage;
+    auto start = std::chrono::steady_clock::now();
+    const Table f = generate_airlight_table(device, air, provenance, Progress{isatty(STDERR_FILENO) != 0, "airlight_F"});
+    report(f, "airlight_F", std::to_string(air.n_u) + " x " + std::to_string(air.n_w) + " (u x w)", seconds_since(start));
+
+    for (bool finite : {false, true}) {
+        NearLightPlan nl = opt.near_light;
+        nl.storage = storage;
+        nl.finite_thickness = finite;
+        if (finite) nl.n_T = nl.n_g = nl.n_r = 32; // the 4-D default: 32³ × 17 S layers
+        const std::string stem = finite ? "near_light_E4" : "near_light_E3";
+        start = std::chrono::steady_clock::now();
+        const Table e = generate_nearlight_table(device, nl, provenance, Progress{isatty(STDERR_FILENO) != 0, stem});
+        std::string shape = std::to_string(nl.n_T) + " x " + std::to_string(nl.n_g) + " x " + std::to_string(nl.n_r);
+        shape += finite ? " x " + std::to_string(nl.n_S) + " (T x g x r x S)" : " (T x g x r)";
+        report(e, stem, shape, seconds_since(start));
+    }
     return 0;
 }
 
@@ -151,6 +176,7 @@ int run_eval(const EvalOptions &opt) {
     for (const auto &path : opt.tables) {
         Table t = load_table(path);
         if (t.kind == kKindAirlightF) tables.airlight.emplace_back(std::move(t));
+        else if (t.kind == kKindNearLightE3 || t.kind == kKindNearLightE4) tables.near_light.emplace_back(std::move(t));
         else throw LoadError(path + ": table kind '" + t.kind + "' is not one eval knows");
     }
     eval_stream(std::cin, std::cout, tables);

@@ -28,6 +28,9 @@ inline constexpr size_t kMaxAxes = 8;
 // the stored values changes (a reader must not silently mix definitions).
 inline constexpr const char *kKindAirlightF = "airlight_F";
 inline constexpr uint32_t kAirlightFQuantityVersion = 1;
+inline constexpr const char *kKindNearLightE3 = "near_light_E3"; // E(T, g, r), S = ∞
+inline constexpr const char *kKindNearLightE4 = "near_light_E4"; // E(T, g, r, S)
+inline constexpr uint32_t kNearLightEQuantityVersion = 1;
 
 enum class Storage : uint32_t { F16 = 1, F32 = 2, F64 = 3 };
 const char *to_string(Storage s);

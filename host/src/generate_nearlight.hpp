@@ -1,0 +1,36 @@
+// scatterlut generator — the near-light tables: ln E(T, g, r) for thick media (3-D) and
+// ln E(T, g, r, S) for slabs of finite optical thickness (4-D), on the OpenCL device.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+
+#include "generate_airlight.hpp" // SamplingStats
+#include "opencl_device.hpp"
+#include "scatterlut/nearlight.hpp"
+#include "scatterlut/table.hpp"
+
+namespace scatterlut {
+
+struct NearLightPlan {
+    bool finite_thickness = false; // false: 3-D (S = ∞); true: 4-D with an S axis
+    double T_min = 1e-3, T_max = 20.0;  // σ_t·l, log axis
+    double g_min = -0.99;               // ω·ω_l; below it (grazing view and light) E is integrated exactly
+    double r_max = 1e3, r_scale = 1e-4; // μ_l/μ_e, log1p axis including r = 0
+    double S_max = 20.0, S_scale = 1e-2;// σ_t·s, log1p axis including S = 0 (4-D only)
+    int n_T = 64, n_g = 64, n_r = 64, n_S = 17;
+    Storage storage = Storage::F32;
+};
+
+Table make_nearlight_table_layout(const NearLightPlan &plan);
+
+Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const Provenance &provenance,
+                               const std::function<void(double)> &progress = {});
+
+// E at `nodes` random nodes against a finer, independent panel rule (refine = 2.5).
+double measure_nearlight_integration(const Table &table, int nodes, uint64_t seed);
+
+// Interpolated E at random unit coordinates where E ≥ 1e-6, against quadrature.
+SamplingStats measure_nearlight_sampling(const NearLightTable &table, int points, uint64_t seed);
+
+} // namespace scatterlut

@@ -1,0 +1,51 @@
+// scatterlut runtime — near light: a point light outside a medium bounded by a plane
+// (wax, marble, skin, a smoke slab), seen from outside. DESIGN.md §1.2 and
+// kernels/slut_nearlight.h:
+//   L = σ_s/(4π) · I0 · σ_t · N(T, g, r, S),   N = H(T, g, S) · E(T, g, r, S)
+// with H in closed form and E ∈ (0, 1] the tabulated ĥ⁻²-weighted mean attenuation.
+#pragma once
+
+#include "scatterlut/table.hpp"
+
+namespace scatterlut {
+
+// One near-light query in physical units. The surface plane passes through the entry
+// point O of the view ray; the medium lies below it (against `normal`).
+struct NearLightQuery {
+    double sigma_s_per_m = 0, sigma_a_per_m = 0; // 1/m
+    double intensity_W_per_sr = 0;               // I0
+    double normal[3] = {0, 0, 1};                // outward unit normal
+    double eye_dir[3] = {0, 0, 1};               // unit, from O towards the viewer
+    double light_rel_m[3] = {0, 0, 1};           // light position − O, m
+    double length_m = 0;                         // path inside (+inf: thick)
+};
+
+// Throws std::invalid_argument naming the field: negative/NaN coefficients, a
+// non-unit normal or eye direction, a viewer below the surface (ω·n ≤ 0).
+void check_near_light_query(const NearLightQuery &q);
+
+// W/(m²·sr); 0 for a light below the surface plane; never NaN.
+double near_light_radiance_exact(const NearLightQuery &q);
+// Closed forms needing no table (DESIGN §1.3): the thin-medium approximation
+// N ≈ H·(1 − e^{−(1+c)S})/((1+c)S), c = 1/r, and the distant-light form with the light's
+// irradiance at O (I0/l²) as L_in.
+double near_light_radiance_thin(const NearLightQuery &q);
+double near_light_radiance_distant(const NearLightQuery &q);
+
+// A loaded near-light table (kinds near_light_E3 and near_light_E4). Axes T, g, r[, S];
+// channel 0 = ln E. Outside the table's domain E is integrated exactly (~1 µs), never
+// clamped.
+class NearLightTable {
+public:
+    explicit NearLightTable(Table table); // checks kind, version, axes, channel
+    bool thick_only() const { return table_.axes.size() == 3; }
+    bool covers(double T, double g, double r, double S) const;
+    double E(double T, double g, double r, double S) const; // S = +inf: thick
+    double radiance(const NearLightQuery &q) const;
+    const Table &table() const { return table_; }
+
+private:
+    Table table_;
+};
+
+} // namespace scatterlut

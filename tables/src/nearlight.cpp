@@ -1,0 +1,108 @@
+#include "scatterlut/nearlight.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "scatterlut/sampler.hpp"
+
+extern "C" {
+#include "slut_nearlight.h"
+}
+
+namespace scatterlut {
+namespace {
+
+void require(bool ok, const std::string &message) {
+    if (!ok) throw std::invalid_argument(message);
+}
+
+bool unit_vector(const double *v) {
+    const double n2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    return std::fabs(n2 - 1.0) < 1e-9;
+}
+
+slut_nl_params params(const NearLightQuery &q) {
+    check_near_light_query(q);
+    slut_nl_params p;
+    slut_nl_params_from_geometry(q.normal, q.eye_dir, q.light_rel_m, q.sigma_s_per_m + q.sigma_a_per_m,
+                                 q.length_m, &p);
+    require(p.kind != SLUT_NL_VIEWER_BELOW, "the viewer is below the surface (eye_dir . normal <= 0)");
+    return p;
+}
+
+// σ_s/(4π)·I0·E·(T·H)/l, the form finite as σ_t → 0; +inf where H diverges.
+double assemble(const NearLightQuery &q, const slut_nl_params &p, double E) {
+    if (p.kind == SLUT_NL_LIGHT_BELOW || !(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) ||
+        !(q.length_m > 0.0))
+        return 0.0;
+    if (!(p.distance_m > 0.0)) return HUGE_VAL;
+    const double H_scaled = slut_nl_H_scaled(p.g, p.S_over_T);
+    if (!std::isfinite(H_scaled)) return HUGE_VAL;
+    return q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * E * H_scaled / p.distance_m;
+}
+
+} // namespace
+
+void check_near_light_query(const NearLightQuery &q) {
+    require(q.sigma_s_per_m >= 0.0 && std::isfinite(q.sigma_s_per_m), "sigma_s must be finite and >= 0 (1/m)");
+    require(q.sigma_a_per_m >= 0.0 && std::isfinite(q.sigma_a_per_m), "sigma_a must be finite and >= 0 (1/m)");
+    require(q.intensity_W_per_sr >= 0.0 && std::isfinite(q.intensity_W_per_sr), "intensity must be finite and >= 0 (W/sr)");
+    require(q.length_m >= 0.0, "length must be >= 0 (m; inf for a thick medium)");
+    require(unit_vector(q.normal), "normal must be a unit vector");
+    require(unit_vector(q.eye_dir), "eye_dir must be a unit vector");
+    for (int k = 0; k < 3; ++k) require(std::isfinite(q.light_rel_m[k]), "light_pos must be finite");
+}
+
+double near_light_radiance_exact(const NearLightQuery &q) {
+    const slut_nl_params p = params(q);
+    return assemble(q, p, p.T > 0.0 ? slut_nl_E(p.T, p.g, p.r, p.S) : 1.0);
+}
+
+double near_light_radiance_thin(const NearLightQuery &q) {
+    const slut_nl_params p = params(q);
+    return assemble(q, p, slut_nl_E_thin(p.r, p.S));
+}
+
+double near_light_radiance_distant(const NearLightQuery &q) {
+    const slut_nl_params p = params(q);
+    if (p.kind != SLUT_NL_OK || !(p.distance_m > 0.0)) return 0.0;
+    const double irradiance = q.intensity_W_per_sr / (p.distance_m * p.distance_m); // W/m² at normal incidence
+    return slut_distant_light_radiance(q.sigma_s_per_m, q.sigma_a_per_m, irradiance, p.mu_e, p.mu_l, q.length_m);
+}
+
+NearLightTable::NearLightTable(Table table) : table_(std::move(table)) {
+    const bool e3 = table_.kind == kKindNearLightE3, e4 = table_.kind == kKindNearLightE4;
+    require(e3 || e4, "not a near-light table (kind '" + table_.kind + "')");
+    require(table_.quantity_version == kNearLightEQuantityVersion, "near-light table quantity version " +
+                                                                     std::to_string(table_.quantity_version) +
+                                                                     " is not the one this library knows");
+    require(table_.axes.size() == (e3 ? 3u : 4u), "near-light table has the wrong number of axes");
+    require(table_.axes[0].name == "T" && table_.axes[1].name == "g" && table_.axes[2].name == "r" &&
+                (e3 || table_.axes[3].name == "S"),
+            "near-light table axes must be (T, g, r[, S])");
+    require(!table_.channels.empty() && table_.channels[0].name == "ln_E" && table_.channels[0].encoding == Encoding::Log,
+            "near-light table channel 0 must be ln_E (log encoded)");
+    table_.check_consistent();
+}
+
+bool NearLightTable::covers(double T, double g, double r, double S) const {
+    auto inside = [](const Axis &a, double p) { return p >= a.map.min && p <= a.map.max; };
+    if (!inside(table_.axes[0], T) || !inside(table_.axes[1], g) || !inside(table_.axes[2], r)) return false;
+    if (thick_only()) return !std::isfinite(S);
+    return std::isfinite(S) && inside(table_.axes[3], S);
+}
+
+double NearLightTable::E(double T, double g, double r, double S) const {
+    if (!covers(T, g, r, S)) return T > 0.0 ? slut_nl_E(T, g, r, S) : 1.0;
+    const double params[4] = {T, g, r, S};
+    return sample(table_, params, 0);
+}
+
+double NearLightTable::radiance(const NearLightQuery &q) const {
+    const slut_nl_params p = params(q);
+    if (p.kind != SLUT_NL_OK) return 0.0;
+    return assemble(q, p, p.T > 0.0 ? E(p.T, p.g, p.r, p.S) : 1.0);
+}
+
+} // namespace scatterlut
