@@ -58,7 +58,7 @@ Table make_nearlight_table_layout(const NearLightPlan &plan) {
     t.kind = plan.finite_thickness ? kKindNearLightE4 : kKindNearLightE3;
     t.quantity_version = kNearLightEQuantityVersion;
     t.axes.push_back(make_axis("T", "optical distance sigma_t*l from the entry point to the light", plan.T_min,
-                               plan.T_max, 0.0, SLUT_WARP_LOG, plan.n_T));
+                               plan.T_max, plan.T_scale, SLUT_WARP_LOG1P, plan.n_T));
     t.axes.push_back(make_axis("g", "cosine between the eye direction and the direction to the light", plan.g_min,
                                1.0, 0.0, SLUT_WARP_SQRT1P, plan.n_g));
     t.axes.push_back(make_axis("r", "mu_l/mu_e, ratio of the light's and the eye's cosines to the normal", 0.0,

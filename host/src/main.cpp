@@ -138,7 +138,11 @@ int run_generate(const GenerateOptions &opt) {
         NearLightPlan nl = opt.near_light;
         nl.storage = storage;
         nl.finite_thickness = finite;
-        if (finite) nl.n_T = nl.n_g = nl.n_r = 32; // the 4-D default: 32³ × 17 S layers
+        if (finite) { // the 4-D default: half the 3-D resolution in T, g, r; 17 S layers
+            nl.n_T /= 2;
+            nl.n_g /= 2;
+            nl.n_r /= 2;
+        }
         const std::string stem = finite ? "near_light_E4" : "near_light_E3";
         start = std::chrono::steady_clock::now();
         const Table e = generate_nearlight_table(device, nl, provenance, Progress{isatty(STDERR_FILENO) != 0, stem});
