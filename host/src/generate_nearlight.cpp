@@ -64,8 +64,8 @@ Table make_nearlight_table_layout(const NearLightPlan &plan) {
     t.axes.push_back(make_axis("r", "mu_l/mu_e, ratio of the light's and the eye's cosines to the normal", 0.0,
                                plan.r_max, plan.r_scale, SLUT_WARP_LOG1P, plan.n_r));
     if (plan.finite_thickness)
-        t.axes.push_back(make_axis("S", "optical thickness sigma_t*s of the path inside", 0.0, plan.S_max,
-                                   plan.S_scale, SLUT_WARP_LOG1P, plan.n_S));
+        t.axes.push_back(make_axis("S", "optical thickness sigma_t*s of the path inside", plan.S_min, plan.S_max,
+                                   0.0, SLUT_WARP_LOG, plan.n_S));
     Channel c;
     c.name = "ln_E";
     c.meaning = "ln of E = N/H, the inverse-square-weighted mean attenuation, in (0,1]";

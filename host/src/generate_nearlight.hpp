@@ -18,7 +18,7 @@ struct NearLightPlan {
     double T_scale = 0.3;               // where ln E(r = 0) ~ −T falls linearly
     double g_min = -0.99;               // ω·ω_l; below it (grazing view and light) E is integrated exactly
     double r_max = 1e3, r_scale = 1e-5; // μ_l/μ_e, log1p axis including r = 0
-    double S_max = 20.0, S_scale = 1e-2;// σ_t·s, log1p axis including S = 0 (4-D only)
+    double S_min = 1e-3, S_max = 20.0;  // σ_t·s, log axis (4-D only); thinner slabs: exact
     int n_T = 96, n_g = 80, n_r = 64, n_S = 17; // E3: max 0.9 % where E ≥ 1e-6 (docs/NEARLIGHT.md)
     Storage storage = Storage::F32;
 };

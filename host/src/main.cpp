@@ -138,10 +138,13 @@ int run_generate(const GenerateOptions &opt) {
         NearLightPlan nl = opt.near_light;
         nl.storage = storage;
         nl.finite_thickness = finite;
-        if (finite) { // the 4-D default: half the 3-D resolution in T, g, r; 17 S layers
-            nl.n_T /= 2;
-            nl.n_g /= 2;
-            nl.n_r /= 2;
+        if (finite) { // the 4-D default (docs/NEARLIGHT.md): r resolved down to 1e-9, where
+                      // thin slabs still see the light through their surface layer
+            nl.n_T = 48;
+            nl.n_g = 40;
+            nl.n_r = 48;
+            nl.n_S = 24;
+            nl.r_scale = 1e-9;
         }
         const std::string stem = finite ? "near_light_E4" : "near_light_E3";
         start = std::chrono::steady_clock::now();
