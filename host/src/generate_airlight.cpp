@@ -6,6 +6,7 @@
 #include <thread>
 #include <vector>
 
+#include "measure_util.hpp"
 #include "scatterlut/io.hpp"
 
 extern "C" {
@@ -13,27 +14,6 @@ extern "C" {
 }
 
 namespace scatterlut {
-namespace {
-
-// Runs f(i) for i in [0, n) on all hardware threads (host-side measurements).
-template <class F> void parallel_for(int n, F f) {
-    const int threads = std::max(1u, std::thread::hardware_concurrency());
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t)
-        pool.emplace_back([=, &f] {
-            for (int i = t; i < n; i += threads) f(i);
-        });
-    for (auto &th : pool) th.join();
-}
-
-double percentile(std::vector<double> v, double q) {
-    if (v.empty()) return 0.0;
-    const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5));
-    std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
-    return v[k];
-}
-
-} // namespace
 
 Table make_airlight_table_layout(const AirlightPlan &plan) {
     Table t;

@@ -8,6 +8,7 @@
 #include <thread>
 #include <vector>
 
+#include "measure_util.hpp"
 #include "scatterlut/io.hpp"
 
 extern "C" {
@@ -29,22 +30,6 @@ Axis make_axis(const char *name, const char *meaning, double min, double max, do
     return a;
 }
 
-template <class F> void parallel_for(int n, F f) {
-    const int threads = std::max(1u, std::thread::hardware_concurrency());
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t)
-        pool.emplace_back([=, &f] {
-            for (int i = t; i < n; i += threads) f(i);
-        });
-    for (auto &th : pool) th.join();
-}
-
-double percentile(std::vector<double> v, double q) {
-    if (v.empty()) return 0.0;
-    const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5));
-    std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
-    return v[k];
-}
 
 double S_of(const Table &t, const size_t *node) {
     return t.axes.size() == 4 ? slut_axis_node(&t.axes[3].map, static_cast<int>(node[3]))
