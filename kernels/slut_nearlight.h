@@ -358,6 +358,38 @@ SLUT_FN double slut_nl_radiance_exact(double sigma_s_per_m, double sigma_a_per_m
     return sigma_s_per_m * SLUT_INV_4PI * intensity_w_sr * E * H_scaled / p.distance_m;
 }
 
+/* ------------------------------------------------------------------ eye-side refraction */
+
+/* The eye ray refracted into the medium (DESIGN §1.3): ω = unit vector from O towards the
+ * viewer (outside), n the outward normal, eta = n_medium/n_outside > 0. Writes the unit
+ * vector ω_t pointing from O back along the refracted ray (so the point at depth x is
+ * O − x ω_t, the same convention as eye_dir) and returns cos θ_t = ω_t·n (> 0).
+ * Snell: sin θ_t = sin θ_i/η; ω_t = (ω − μ_e n)/η + cos θ_t n. Never total internal
+ * reflection from outside (η ≥ 1); for η < 1 beyond the critical angle the ray grazes
+ * (cos θ_t = 0). */
+SLUT_FN double slut_refract_eye_dir(const double *normal, const double *eye_dir, double eta, double *out) {
+    double mu_e = eye_dir[0] * normal[0] + eye_dir[1] * normal[1] + eye_dir[2] * normal[2];
+    double sin2_t = (1.0 - mu_e * mu_e) / (eta * eta);
+    double cos_t = sqrt(fmax(1.0 - sin2_t, 0.0));
+    double len2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        out[k] = (eye_dir[k] - mu_e * normal[k]) / eta + cos_t * normal[k];
+        len2 += out[k] * out[k];
+    }
+    double inv = 1.0 / sqrt(len2);
+    for (int k = 0; k < 3; ++k) out[k] *= inv;
+    return cos_t;
+}
+
+/* Unpolarised Fresnel transmittance 1 − (R_s + R_p)/2 through the interface, from the
+ * cosines on the outside (cos_i) and the inside (cos_t) and η = n_medium/n_outside. */
+SLUT_FN double slut_fresnel_transmittance(double cos_i, double cos_t, double eta) {
+    if (!(cos_t > 0.0) || !(cos_i > 0.0)) return 0.0;
+    double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    return 1.0 - 0.5 * (rs * rs + rp * rp);
+}
+
 /* ------------------------------------------------------------------ closed forms (no table) */
 
 /* Distant-light attenuation integral ∫_0^S e^{−(1+c)t} dt = (1 − e^{−(1+c)S})/(1+c), c = 1/r

@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 
+#include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <gtest/gtest.h>
 
 #include "eval.hpp"
@@ -145,4 +146,53 @@ TEST(NearLightTable, DefaultThickTableWithinOnePercent) {
     EXPECT_FALSE(table.covers(50.0, 0.9, 1e-4, std::numeric_limits<double>::infinity()));
     EXPECT_LE(slut_test::rel_err(table.E(50.0, 0.9, 1e-4, std::numeric_limits<double>::infinity()),
                                  2.015009384261607074432191e-6L), 1e-8); // off-table: exact (N_ref.json)
+}
+
+// Eye-side refraction: the radiance along the refracted ray by explicit 3-D quadrature
+// (point P = O − x ω_t; the light path below the plane is |P − light|·depth/(depth + height))
+// times the unpolarised Fresnel transmittance, against near_light_radiance_exact with
+// eta and fresnel. Boost Gauss–Kronrod with break points at e-folds; 1e-9.
+TEST(NearLightRefraction, MatchesExplicitQuadratureAlongTheRefractedRay) {
+    const double eta = 1.45, sigma_s = 0.8, sigma_a = 0.3, sigma_t = sigma_s + sigma_a, I0 = 2.0;
+    const double n[3] = {0, 0, 1};
+    const double c = std::cos(0.9), sn = std::sin(0.9);
+    const double eye[3] = {sn, 0, c};
+    const double light[3] = {-0.4, 0.3, 0.5};
+    for (double s : {0.7, std::numeric_limits<double>::infinity()}) {
+        // ω_t by Snell's law, written out independently of the header.
+        const double sin_t = sn / eta, cos_t = std::sqrt(1 - sin_t * sin_t);
+        const double wt[3] = {sin_t, 0, cos_t};
+        auto integrand = [&](double x) {
+            const double P[3] = {-x * wt[0], -x * wt[1], -x * wt[2]};
+            const double d[3] = {light[0] - P[0], light[1] - P[1], light[2] - P[2]};
+            const double h = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            const double depth = -P[2], height = light[2];
+            const double inside = h * depth / (depth + height);
+            return std::exp(-sigma_t * (x + inside)) / (h * h);
+        };
+        const double end = std::isinf(s) ? 60.0 / sigma_t : s;
+        double integral = 0;
+        for (double a = 0; a < end; a += 0.25) {
+            const double b = std::min(end, a + 0.25);
+            integral += boost::math::quadrature::gauss_kronrod<double, 61>::integrate(integrand, a, b, 15, 1e-14);
+        }
+        const double rs = (c - eta * cos_t) / (c + eta * cos_t), rp = (eta * c - cos_t) / (eta * c + cos_t);
+        const double fresnel = 1 - 0.5 * (rs * rs + rp * rp);
+        const double want = fresnel * sigma_s / (4 * M_PI) * I0 * integral;
+        scatterlut::NearLightQuery q;
+        q.sigma_s_per_m = sigma_s;
+        q.sigma_a_per_m = sigma_a;
+        q.intensity_W_per_sr = I0;
+        for (int k = 0; k < 3; ++k) {
+            q.normal[k] = n[k];
+            q.eye_dir[k] = eye[k];
+            q.light_rel_m[k] = light[k];
+        }
+        q.length_m = s;
+        q.eta = eta;
+        q.fresnel = true;
+        EXPECT_LE(slut_test::rel_err(scatterlut::near_light_radiance_exact(q), want), 1e-9) << "s=" << s;
+        q.fresnel = false;
+        EXPECT_LE(slut_test::rel_err(scatterlut::near_light_radiance_exact(q), want / fresnel), 1e-9) << "s=" << s;
+    }
 }

@@ -100,9 +100,16 @@ void answer_near_light(const nlohmann::json &q, nlohmann::json &out, const EvalT
     vector_field(q, "eye_dir", n.eye_dir);
     vector_field(q, "light_pos", n.light_rel_m);
     n.length_m = number_field(q, "length");
+    if (q.contains("eta")) n.eta = number_field(q, "eta");
+    if (q.contains("fresnel")) {
+        if (!q.at("fresnel").is_boolean()) throw std::invalid_argument("field \"fresnel\" must be true or false");
+        n.fresnel = q.at("fresnel").get<bool>();
+    }
     put(out, "exact", near_light_radiance_exact(n)); // validates the query
+    double eye_inside[3] = {n.eye_dir[0], n.eye_dir[1], n.eye_dir[2]};
+    if (n.eta != 1.0) slut_refract_eye_dir(n.normal, n.eye_dir, n.eta, eye_inside);
     slut_nl_params p;
-    slut_nl_params_from_geometry(n.normal, n.eye_dir, n.light_rel_m, n.sigma_s_per_m + n.sigma_a_per_m, n.length_m, &p);
+    slut_nl_params_from_geometry(n.normal, eye_inside, n.light_rel_m, n.sigma_s_per_m + n.sigma_a_per_m, n.length_m, &p);
     const NearLightTable *t = (p.kind == SLUT_NL_OK) ? covering(tables, p.T, p.g, p.r, p.S) : nullptr;
     if (t) put(out, "table", t->radiance(n));
     else if (p.kind == SLUT_NL_LIGHT_BELOW && !tables.near_light.empty()) out["table"] = 0.0;

@@ -24,11 +24,24 @@ bool unit_vector(const double *v) {
 
 slut_nl_params params(const NearLightQuery &q) {
     check_near_light_query(q);
+    double eye_inside[3] = {q.eye_dir[0], q.eye_dir[1], q.eye_dir[2]};
+    const double mu_e = q.eye_dir[0] * q.normal[0] + q.eye_dir[1] * q.normal[1] + q.eye_dir[2] * q.normal[2];
+    require(mu_e > 0.0, "the viewer is below the surface (eye_dir . normal <= 0)");
+    if (q.eta != 1.0) slut_refract_eye_dir(q.normal, q.eye_dir, q.eta, eye_inside);
     slut_nl_params p;
-    slut_nl_params_from_geometry(q.normal, q.eye_dir, q.light_rel_m, q.sigma_s_per_m + q.sigma_a_per_m,
+    slut_nl_params_from_geometry(q.normal, eye_inside, q.light_rel_m, q.sigma_s_per_m + q.sigma_a_per_m,
                                  q.length_m, &p);
-    require(p.kind != SLUT_NL_VIEWER_BELOW, "the viewer is below the surface (eye_dir . normal <= 0)");
+    if (p.kind == SLUT_NL_VIEWER_BELOW) p.kind = SLUT_NL_LIGHT_BELOW; // refracted to grazing: no light out
     return p;
+}
+
+// The Fresnel factor of the exit, 1 without refraction or without `fresnel`.
+double exit_transmittance(const NearLightQuery &q) {
+    if (!q.fresnel || q.eta == 1.0) return 1.0;
+    double inside[3];
+    const double cos_i = q.eye_dir[0] * q.normal[0] + q.eye_dir[1] * q.normal[1] + q.eye_dir[2] * q.normal[2];
+    const double cos_t = slut_refract_eye_dir(q.normal, q.eye_dir, q.eta, inside);
+    return slut_fresnel_transmittance(cos_i, cos_t, q.eta);
 }
 
 // σ_s/(4π)·I0·E·(T·H)/l, the form finite as σ_t → 0; +inf where H diverges.
@@ -39,7 +52,7 @@ double assemble(const NearLightQuery &q, const slut_nl_params &p, double E) {
     if (!(p.distance_m > 0.0)) return HUGE_VAL;
     const double H_scaled = slut_nl_H_scaled(p.g, p.S_over_T);
     if (!std::isfinite(H_scaled)) return HUGE_VAL;
-    return q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * E * H_scaled / p.distance_m;
+    return exit_transmittance(q) * q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * E * H_scaled / p.distance_m;
 }
 
 } // namespace
@@ -51,6 +64,7 @@ void check_near_light_query(const NearLightQuery &q) {
     require(q.length_m >= 0.0, "length must be >= 0 (m; inf for a thick medium)");
     require(unit_vector(q.normal), "normal must be a unit vector");
     require(unit_vector(q.eye_dir), "eye_dir must be a unit vector");
+    require(q.eta > 0.0 && std::isfinite(q.eta), "eta (relative index of refraction) must be finite and > 0");
     for (int k = 0; k < 3; ++k) require(std::isfinite(q.light_rel_m[k]), "light_pos must be finite");
 }
 
@@ -68,7 +82,8 @@ double near_light_radiance_distant(const NearLightQuery &q) {
     const slut_nl_params p = params(q);
     if (p.kind != SLUT_NL_OK || !(p.distance_m > 0.0)) return 0.0;
     const double irradiance = q.intensity_W_per_sr / (p.distance_m * p.distance_m); // W/m² at normal incidence
-    return slut_distant_light_radiance(q.sigma_s_per_m, q.sigma_a_per_m, irradiance, p.mu_e, p.mu_l, q.length_m);
+    return exit_transmittance(q) *
+           slut_distant_light_radiance(q.sigma_s_per_m, q.sigma_a_per_m, irradiance, p.mu_e, p.mu_l, q.length_m);
 }
 
 NearLightTable::NearLightTable(Table table) : table_(std::move(table)) {

@@ -18,6 +18,12 @@ struct NearLightQuery {
     double eye_dir[3] = {0, 0, 1};               // unit, from O towards the viewer
     double light_rel_m[3] = {0, 0, 1};           // light position − O, m
     double length_m = 0;                         // path inside (+inf: thick)
+    // Eye-side refraction: relative index η = n_medium/n_outside (1: none). With η ≠ 1 the
+    // view ray is refracted into the medium and μ_e, g use the refracted direction; with
+    // `fresnel` the radiance is multiplied by the unpolarised Fresnel transmittance of
+    // the exit (the light side is not refracted: DESIGN §1.2's light path is straight).
+    double eta = 1.0;
+    bool fresnel = false;
 };
 
 // Throws std::invalid_argument naming the field: negative/NaN coefficients, a

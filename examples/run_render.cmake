@@ -1,0 +1,20 @@
+# cmake -DSCATTERLUT=… -DRENDER_FOG=… -DWORK_DIR=… -P run_render.cmake
+# Generates the default tables into WORK_DIR/tables, renders WORK_DIR/{table,exact}.png.
+foreach(var SCATTERLUT RENDER_FOG WORK_DIR)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "run_render.cmake: -D${var}=… is required")
+  endif()
+endforeach()
+file(MAKE_DIRECTORY ${WORK_DIR}/tables)
+execute_process(COMMAND ${SCATTERLUT} generate --out ${WORK_DIR}/tables
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "scatterlut generate failed (${rc}):\n${out}\n${err}")
+endif()
+execute_process(COMMAND ${RENDER_FOG} ${WORK_DIR}/tables/airlight_F.slut
+                        ${WORK_DIR}/tables/near_light_E3.slut ${WORK_DIR}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "render_fog failed (exit ${rc})")
+endif()
