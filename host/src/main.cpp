@@ -14,6 +14,8 @@
 #include <CLI/CLI.hpp>
 
 #include "eval.hpp"
+#include "inspect.hpp"
+#include "validate.hpp"
 #include "generate_airlight.hpp"
 #include "generate_nearlight.hpp"
 #include "opencl_device.hpp"
@@ -211,6 +213,8 @@ int main(int argc, char **argv) {
     setup_devices(app, exit_code);
     setup_generate(app, exit_code);
     setup_eval(app, exit_code);
+    setup_validate(app, exit_code);
+    setup_inspect(app, exit_code);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError &e) {

@@ -1,0 +1,150 @@
+#include "inspect.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "scatterlut/io.hpp"
+#include "scatterlut/sampler.hpp"
+
+namespace scatterlut {
+namespace {
+
+struct InspectOptions {
+    std::string file;
+    bool json = false;
+};
+
+struct Range {
+    double min = std::numeric_limits<double>::infinity();
+    double max = -std::numeric_limits<double>::infinity();
+};
+
+// Decoded (quantity, not stored encoding) range of each channel.
+std::vector<Range> channel_ranges(const Table &t) {
+    std::vector<Range> out(t.channels.size());
+    const size_t nc = t.channels.size();
+    for (size_t i = 0; i < t.values.size(); ++i) {
+        const double q = decode(t.channels[i % nc].encoding, t.values[i]);
+        Range &r = out[i % nc];
+        r.min = std::min(r.min, q);
+        r.max = std::max(r.max, q);
+    }
+    return out;
+}
+
+// The file's own format version: read from the binary preamble (magic, u32 major, u32
+// minor, little-endian); the loader has already accepted it. EXR files carry it as
+// attributes the Table does not keep: reported as the major version this reader accepts.
+std::string file_format_version(const std::string &path) {
+    unsigned char b[16] = {};
+    std::ifstream in(path, std::ios::binary);
+    in.read(reinterpret_cast<char *>(b), sizeof b);
+    if (in.gcount() == 16 && std::memcmp(b, "SLUTTBL\0", 8) == 0) {
+        auto u32 = [&](int o) {
+            return static_cast<uint32_t>(b[o]) | static_cast<uint32_t>(b[o + 1]) << 8 |
+                   static_cast<uint32_t>(b[o + 2]) << 16 | static_cast<uint32_t>(b[o + 3]) << 24;
+        };
+        return std::to_string(u32(8)) + "." + std::to_string(u32(12)) + " (binary)";
+    }
+    return std::to_string(kFormatMajor) + ".x (OpenEXR)";
+}
+
+nlohmann::json num(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+// A negative declared accuracy means "not measured".
+nlohmann::json declared(double x) { return x >= 0 ? num(x) : nlohmann::json(nullptr); }
+
+void print_json(const InspectOptions &opt, const Table &t) {
+    nlohmann::json j;
+    j["file"] = opt.file;
+    j["format_version"] = file_format_version(opt.file);
+    j["kind"] = t.kind;
+    j["quantity_version"] = t.quantity_version;
+    j["storage"] = to_string(t.storage);
+    j["nodes"] = t.node_count();
+    nlohmann::json axes = nlohmann::json::array();
+    for (const auto &a : t.axes)
+        axes.push_back({{"name", a.name}, {"meaning", a.meaning}, {"min", num(a.map.min)}, {"max", num(a.map.max)},
+                        {"warp", warp_name(a.map.warp)}, {"scale", a.map.scale}, {"count", a.map.count}});
+    j["axes"] = axes;
+    const auto ranges = channel_ranges(t);
+    nlohmann::json channels = nlohmann::json::array();
+    for (size_t c = 0; c < t.channels.size(); ++c)
+        channels.push_back({{"name", t.channels[c].name}, {"meaning", t.channels[c].meaning},
+                            {"encoding", to_string(t.channels[c].encoding)},
+                            {"decoded_min", num(ranges[c].min)}, {"decoded_max", num(ranges[c].max)}});
+    j["channels"] = channels;
+    const Accuracy &a = t.accuracy;
+    j["accuracy"] = {{"integration_max_rel", declared(a.integration_max_rel)},
+                     {"storage_max_rel", declared(a.storage_max_rel)},
+                     {"sampling_max_rel", declared(a.sampling_max_rel)},
+                     {"sampling_p99_rel", declared(a.sampling_p99_rel)},
+                     {"sampling_median_rel", declared(a.sampling_median_rel)},
+                     {"sampling_points", a.sampling_points},
+                     {"sampling_domain", a.sampling_domain}};
+    const Provenance &p = t.provenance;
+    j["provenance"] = {{"generator_version", p.generator_version}, {"command_line", p.command_line},
+                       {"device", p.device}, {"created_by", p.created_by}, {"scene_bytes", p.scene.size()}};
+    j["extra"] = t.extra;
+    std::cout << j.dump() << "\n";
+}
+
+void print_text(const InspectOptions &opt, const Table &t) {
+    std::printf("%s\n", opt.file.c_str());
+    std::printf("  format version  %s, read by a %u.%u reader\n", file_format_version(opt.file).c_str(), kFormatMajor,
+                kFormatMinor);
+    std::printf("  kind            %s (quantity version %u)\n", t.kind.c_str(), t.quantity_version);
+    std::printf("  storage         %s, %zu nodes\n", to_string(t.storage), t.node_count());
+    std::printf("  axes (axis 0 varies fastest):\n");
+    for (const auto &a : t.axes)
+        std::printf("    %-4s [%.6g, %.6g]  warp %s, scale %g, %d nodes  -- %s\n", a.name.c_str(), a.map.min,
+                    a.map.max, warp_name(a.map.warp), a.map.scale, a.map.count, a.meaning.c_str());
+    std::printf("  channels:\n");
+    const auto ranges = channel_ranges(t);
+    for (size_t c = 0; c < t.channels.size(); ++c)
+        std::printf("    %-6s encoding %s, decoded range [%.6g, %.6g]  -- %s\n", t.channels[c].name.c_str(),
+                    to_string(t.channels[c].encoding), ranges[c].min, ranges[c].max, t.channels[c].meaning.c_str());
+    const Accuracy &a = t.accuracy;
+    std::printf("  declared accuracy (relative, on the quantity):\n");
+    std::printf("    integration max %.3e, storage rounding max %.3e\n", a.integration_max_rel, a.storage_max_rel);
+    std::printf("    sampling max %.3e, p99 %.3e, median %.3e over %llu points (%s)\n", a.sampling_max_rel,
+                a.sampling_p99_rel, a.sampling_median_rel, static_cast<unsigned long long>(a.sampling_points),
+                a.sampling_domain.c_str());
+    const Provenance &p = t.provenance;
+    std::printf("  provenance:\n");
+    std::printf("    generator     %s (created by %s)\n", p.generator_version.c_str(), p.created_by.c_str());
+    std::printf("    command line  %s\n", p.command_line.c_str());
+    std::printf("    device        %s\n", p.device.c_str());
+    std::printf("    scene         %s\n", p.scene.empty() ? "(none)" : (std::to_string(p.scene.size()) + " bytes").c_str());
+    for (const auto &[k, v] : t.extra) std::printf("    %s = %s\n", k.c_str(), v.c_str());
+}
+
+int run_inspect(const InspectOptions &opt) {
+    const Table t = load_table(opt.file); // LoadError → main → exit 2
+    if (opt.json) print_json(opt, t);
+    else print_text(opt, t);
+    return 0;
+}
+
+} // namespace
+
+void setup_inspect(CLI::App &app, int &exit_code) {
+    auto opt = std::make_shared<InspectOptions>();
+    auto *cmd = app.add_subcommand("inspect", "Print a table file's metadata, axes, channels, accuracy and provenance");
+    cmd->add_option("file", opt->file, "Table file (.slut or .exr)")->required();
+    cmd->add_flag("--json", opt->json, "One JSON object on stdout");
+    cmd->callback([opt, &exit_code] { exit_code = run_inspect(*opt); });
+}
+
+} // namespace scatterlut

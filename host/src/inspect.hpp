@@ -1,0 +1,13 @@
+// scatterlut — `scatterlut inspect FILE`: a table file's metadata, axes, channels (with
+// the decoded value range), declared accuracy and provenance, as text or JSON.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace scatterlut {
+
+// Adds the `inspect` subcommand; its callback sets exit_code to 0 (a LoadError propagates
+// to main, which maps it to 2).
+void setup_inspect(CLI::App &app, int &exit_code);
+
+} // namespace scatterlut

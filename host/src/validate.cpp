@@ -1,0 +1,273 @@
+#include "validate.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "generate_airlight.hpp"
+#include "generate_nearlight.hpp"
+#include "measure_util.hpp"
+#include "scatterlut/airlight.hpp"
+#include "scatterlut/io.hpp"
+#include "scatterlut/nearlight.hpp"
+#include "scatterlut/sampler.hpp"
+
+extern "C" {
+#include "slut_airlight.h"
+#include "slut_nearlight.h"
+}
+
+namespace scatterlut {
+namespace {
+
+constexpr int kExitFailure = 1;
+constexpr int kExitBadInput = 2;
+
+// The generator measures with seeds 1 (nodes) and 2 (sampling); validation uses other
+// random samples so that it does not merely repeat the generator's own measurement.
+constexpr uint64_t kNodeSeed = 0x76616c69646e6f64ull;   // "validnod"
+constexpr uint64_t kSampleSeed = 0x76616c6964736d70ull; // "validsmp"
+
+// Node check: the stored (rounded) value differs from the exact one by the integration
+// error plus the storage rounding. The declared integration_max_rel is a maximum over the
+// generator's 400 random nodes; our sample (all corners + other random nodes) can hit a
+// node somewhat worse, hence the factor (1 + kNodeMargin). The absolute floor 1e-12
+// covers the reference quadrature's own error (~1e-13) for f64 tables whose declared
+// errors are at round-off level.
+constexpr double kNodeMargin = 1.0;
+constexpr double kNodeFloor = 1e-12;
+// Sampling check: the declared sampling_max_rel is the maximum over the generator's
+// 20000 random points; a different (and smaller) random sample finds a slightly different
+// maximum, usually lower but occasionally higher where the worst region is narrow.
+// Allow 1.5 × declared + 1e-6 (the 1e-6 keeps near-exact f64 tables from failing on noise).
+constexpr double kSamplingFactor = 1.5;
+constexpr double kSamplingFloor = 1e-6;
+
+struct ValidateOptions {
+    std::vector<std::string> files;
+    bool json = false;
+    int nodes = 400;
+    int points = 4000;
+};
+
+struct Check {
+    std::string name;
+    double measured = 0;
+    double limit = 0;
+    uint64_t count = 0;
+    bool pass = false;
+};
+
+struct FileReport {
+    std::string path;
+    int status = 0; // 0 pass, 1 fail, 2 unreadable/unsupported
+    std::string message;
+    Table table; // empty when unreadable
+    std::vector<Check> checks;
+};
+
+std::string axes_text(const Table &t) {
+    std::string s;
+    for (const auto &a : t.axes) {
+        if (!s.empty()) s += " x ";
+        s += a.name + "[" + std::to_string(a.map.count) + "]";
+    }
+    return s;
+}
+
+// The nodes to check: every corner of the grid, then random nodes up to `nodes`.
+std::vector<std::array<size_t, kMaxAxes>> pick_nodes(const Table &t, int nodes) {
+    const size_t n_axes = t.axes.size();
+    std::vector<std::array<size_t, kMaxAxes>> picks;
+    for (size_t c = 0; c < (size_t{1} << n_axes); ++c) {
+        std::array<size_t, kMaxAxes> p{};
+        for (size_t a = 0; a < n_axes; ++a) p[a] = (c >> a & 1u) ? static_cast<size_t>(t.axes[a].map.count - 1) : 0;
+        picks.push_back(p);
+    }
+    std::mt19937_64 rng(kNodeSeed);
+    while (picks.size() < static_cast<size_t>(nodes)) {
+        std::array<size_t, kMaxAxes> p{};
+        for (size_t a = 0; a < n_axes; ++a)
+            p[a] = std::uniform_int_distribution<size_t>(0, static_cast<size_t>(t.axes[a].map.count - 1))(rng);
+        picks.push_back(p);
+    }
+    return picks;
+}
+
+// Max relative error of the stored, decoded channel-0 values at the picked nodes against
+// a finer quadrature than the generator's production rule.
+double node_error(const Table &t, const std::vector<std::array<size_t, kMaxAxes>> &picks) {
+    const bool airlight = t.kind == kKindAirlightF;
+    std::vector<double> err(picks.size());
+    parallel_for(static_cast<int>(picks.size()), [&](int k) {
+        const auto &p = picks[static_cast<size_t>(k)];
+        double param[kMaxAxes];
+        for (size_t a = 0; a < t.axes.size(); ++a) param[a] = slut_axis_node(&t.axes[a].map, static_cast<int>(p[a]));
+        double reference;
+        if (airlight) {
+            reference = slut_gs_quadrature(param[0], param[1], 3.0);
+        } else {
+            const double S = t.axes.size() == 4 ? param[3] : std::numeric_limits<double>::infinity();
+            slut_nl_E_lanes(param[0], param[1], S, &param[2], 1, &reference, 2.5);
+        }
+        const double stored = decode(t.channels[0].encoding, t.values[t.index(p.data())]);
+        err[static_cast<size_t>(k)] = std::fabs(stored - reference) / reference;
+    });
+    double worst = 0;
+    for (double e : err) worst = std::isnan(e) ? std::numeric_limits<double>::infinity() : std::max(worst, e);
+    return worst;
+}
+
+FileReport validate_file(const std::string &path, const ValidateOptions &opt) {
+    FileReport r;
+    r.path = path;
+    try {
+        r.table = load_table(path);
+    } catch (const LoadError &e) {
+        r.status = kExitBadInput;
+        r.message = std::string("unreadable or unsupported: ") + e.what();
+        return r;
+    }
+    Table &t = r.table;
+    const bool airlight = t.kind == kKindAirlightF;
+    const bool near_light = t.kind == kKindNearLightE3 || t.kind == kKindNearLightE4;
+    if (!airlight && !near_light) {
+        r.status = kExitBadInput;
+        r.message = "unreadable or unsupported: table kind '" + t.kind + "' is not one validate knows";
+        return r;
+    }
+    // The runtime classes check kind, quantity version, axes and channel.
+    std::unique_ptr<AirlightTable> air;
+    std::unique_ptr<NearLightTable> nl;
+    try {
+        if (airlight) air = std::make_unique<AirlightTable>(t);
+        else nl = std::make_unique<NearLightTable>(t);
+    } catch (const std::invalid_argument &e) {
+        r.status = kExitBadInput;
+        r.message = std::string("unreadable or unsupported: ") + e.what();
+        return r;
+    }
+    const Accuracy &a = t.accuracy;
+    if (!(a.integration_max_rel >= 0) || !(a.storage_max_rel >= 0) || !(a.sampling_max_rel >= 0)) {
+        r.status = kExitFailure;
+        r.message = "inconsistent: the file does not declare its integration, storage and sampling accuracy";
+        return r;
+    }
+
+    Check nodes;
+    nodes.name = "nodes";
+    const auto picks = pick_nodes(t, opt.nodes);
+    nodes.count = picks.size();
+    nodes.measured = node_error(t, picks);
+    nodes.limit = std::max(a.integration_max_rel, a.storage_max_rel) * (1 + kNodeMargin) + a.storage_max_rel + kNodeFloor;
+    nodes.pass = nodes.measured <= nodes.limit;
+    r.checks.push_back(nodes);
+
+    Check sampling;
+    sampling.name = "sampling";
+    const SamplingStats s = air ? measure_airlight_sampling(*air, opt.points, kSampleSeed)
+                                : measure_nearlight_sampling(*nl, opt.points, kSampleSeed);
+    sampling.count = s.points;
+    sampling.measured = s.max_rel;
+    sampling.limit = kSamplingFactor * a.sampling_max_rel + kSamplingFloor;
+    sampling.pass = s.max_rel <= sampling.limit; // false for NaN
+    r.checks.push_back(sampling);
+
+    r.status = (nodes.pass && sampling.pass) ? 0 : kExitFailure;
+    if (r.status) r.message = "accuracy worse than declared";
+    return r;
+}
+
+const char *status_name(int status) { return status == 0 ? "PASS" : status == 1 ? "FAIL" : "UNREADABLE"; }
+
+nlohmann::json finite_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+void print_json(const FileReport &r) {
+    nlohmann::json j;
+    j["file"] = r.path;
+    j["status"] = status_name(r.status);
+    j["pass"] = r.status == 0;
+    if (!r.message.empty()) j["message"] = r.message;
+    if (r.status != kExitBadInput) {
+        const Table &t = r.table;
+        j["kind"] = t.kind;
+        j["storage"] = to_string(t.storage);
+        nlohmann::json axes = nlohmann::json::array();
+        for (const auto &a : t.axes) axes.push_back({{"name", a.name}, {"count", a.map.count}});
+        j["axes"] = axes;
+        j["declared"] = {{"integration_max_rel", t.accuracy.integration_max_rel},
+                         {"storage_max_rel", t.accuracy.storage_max_rel},
+                         {"sampling_max_rel", t.accuracy.sampling_max_rel}};
+        nlohmann::json checks = nlohmann::json::object();
+        for (const auto &c : r.checks)
+            checks[c.name] = {{"measured_max_rel", finite_or_null(c.measured)}, {"limit", c.limit},
+                              {"count", c.count}, {"pass", c.pass}};
+        j["checks"] = checks;
+    }
+    std::cout << j.dump() << "\n";
+}
+
+void print_text(const FileReport &r) {
+    std::printf("%s: %s\n", r.path.c_str(), status_name(r.status));
+    if (r.status == kExitBadInput) {
+        std::printf("  %s\n", r.message.c_str());
+        return;
+    }
+    const Table &t = r.table;
+    const Accuracy &a = t.accuracy;
+    std::printf("  kind %s (quantity v%u), %s, axes %s\n", t.kind.c_str(), t.quantity_version, to_string(t.storage),
+                axes_text(t).c_str());
+    std::printf("  declared: integration %.2e, storage %.2e, sampling %.2e\n", a.integration_max_rel,
+                a.storage_max_rel, a.sampling_max_rel);
+    for (const auto &c : r.checks) {
+        if (c.name == "nodes")
+            std::printf("  nodes:    max rel %.2e at %llu nodes (corners + random, finer rule), limit %.2e  %s\n",
+                        c.measured, static_cast<unsigned long long>(c.count), c.limit, c.pass ? "PASS" : "FAIL");
+        else
+            std::printf("  sampling: max rel %.2e at %llu off-node points (new seed), limit %.2e  %s\n", c.measured,
+                        static_cast<unsigned long long>(c.count), c.limit, c.pass ? "PASS" : "FAIL");
+    }
+    if (r.status != 0 && !r.message.empty()) std::printf("  %s\n", r.message.c_str());
+}
+
+int run_validate(const ValidateOptions &opt) {
+    int worst = 0;
+    for (const auto &path : opt.files) {
+        const FileReport r = validate_file(path, opt);
+        if (r.status == kExitBadInput) std::cerr << "scatterlut: " << r.message << "\n";
+        if (opt.json) print_json(r);
+        else print_text(r);
+        worst = std::max(worst, r.status);
+    }
+    return worst;
+}
+
+} // namespace
+
+void setup_validate(CLI::App &app, int &exit_code) {
+    auto opt = std::make_shared<ValidateOptions>();
+    auto *cmd = app.add_subcommand("validate",
+                                   "Re-measure table files' accuracy independently and compare with what they declare");
+    cmd->add_option("files", opt->files, "Table files (.slut or .exr)")->required();
+    cmd->add_flag("--json", opt->json, "One JSON object per file on stdout");
+    cmd->add_option("--nodes", opt->nodes, "Nodes re-integrated with a finer rule (corners included)")
+        ->check(CLI::Range(200, 1000000))
+        ->capture_default_str();
+    cmd->add_option("--points", opt->points, "Random off-node points for the sampling error")
+        ->check(CLI::Range(2000, 10000000))
+        ->capture_default_str();
+    cmd->callback([opt, &exit_code] { exit_code = run_validate(*opt); });
+}
+
+} // namespace scatterlut

@@ -1,0 +1,158 @@
+// `scatterlut validate` and `scatterlut inspect`, run as the built executable: exit codes
+// (0 pass, 1 accuracy failure, 2 unreadable), the human and JSON outputs.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "scatterlut/io.hpp"
+
+namespace {
+
+struct Result {
+    int exit_code;
+    std::string out;
+};
+
+std::string stem() { return testing::TempDir() + "/slut_validate_" + std::to_string(getpid()); }
+
+// Runs the binary with `args` (shell syntax); captures stdout, stderr to a per-call file.
+Result run(const std::string &args) {
+    static int calls = 0; // ctest runs tests as parallel processes: unique names per call
+    const std::string err = stem() + "_" + std::to_string(++calls) + ".err";
+    const std::string command = std::string(SLUT_BINARY) + " " + args + " </dev/null 2>" + err;
+    FILE *pipe = popen(command.c_str(), "r");
+    std::string out;
+    char buffer[4096];
+    size_t n;
+    while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) out.append(buffer, n);
+    const int status = pclose(pipe);
+    std::filesystem::remove(err);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+// Small tables, generated once per test process.
+const std::string &tables_dir() {
+    static const std::string dir = [] {
+        const std::string d = stem() + "_tables";
+        std::filesystem::remove_all(d);
+        const Result gen = run("generate --out " + d + " --n-u 128 --n-w 64");
+        EXPECT_EQ(gen.exit_code, 0) << gen.out;
+        return d;
+    }();
+    return dir;
+}
+
+const char *const kStems[] = {"airlight_F", "near_light_E3", "near_light_E4"};
+
+std::vector<nlohmann::json> json_lines(const std::string &text) {
+    std::vector<nlohmann::json> out;
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line))
+        if (!line.empty()) out.push_back(nlohmann::json::parse(line));
+    return out;
+}
+
+} // namespace
+
+TEST(Validate, GeneratedTablesPass) {
+    const std::string &dir = tables_dir();
+    std::string files;
+    for (const char *s : kStems)
+        for (const char *ext : {".slut", ".exr"}) {
+            ASSERT_TRUE(std::filesystem::exists(dir + "/" + s + ext)) << s << ext;
+            files += " " + dir + "/" + s + ext;
+        }
+    const Result r = run("validate" + files);
+    EXPECT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_EQ(r.out.find("FAIL"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("airlight_F.slut: PASS"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("near_light_E4.exr: PASS"), std::string::npos) << r.out;
+}
+
+TEST(Validate, JsonOneObjectPerFile) {
+    const std::string &dir = tables_dir();
+    const Result r = run("validate --json " + dir + "/airlight_F.slut " + dir + "/near_light_E3.exr");
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    const auto lines = json_lines(r.out);
+    ASSERT_EQ(lines.size(), 2u) << r.out;
+    for (const auto &j : lines) {
+        EXPECT_TRUE(j.at("pass").get<bool>()) << j.dump();
+        EXPECT_GE(j.at("checks").at("nodes").at("count").get<int>(), 200);
+        EXPECT_GE(j.at("checks").at("sampling").at("count").get<int>(), 1000); // E < 1e-6 points are dropped
+    }
+    EXPECT_EQ(lines[0].at("kind"), "airlight_F");
+    EXPECT_EQ(lines[1].at("kind"), "near_light_E3");
+}
+
+// Values 0.1 % too large, with a consistent checksum (written by the library itself): the
+// loader accepts the file, the accuracy check must not.
+TEST(Validate, PerturbedValuesFail) {
+    const std::string &dir = tables_dir();
+    for (const char *s : {"airlight_F", "near_light_E3"}) {
+        scatterlut::Table t = scatterlut::load_table(dir + "/" + s + ".slut");
+        for (double &v : t.values) v += std::log(1.001); // ln-encoded: quantity × 1.001
+        const std::string path = stem() + "_perturbed_" + s + ".slut";
+        scatterlut::save_binary(t, path);
+        const Result r = run("validate " + path);
+        EXPECT_EQ(r.exit_code, 1) << s << "\n" << r.out;
+        EXPECT_NE(r.out.find("FAIL"), std::string::npos) << r.out;
+        const Result j = run("validate --json " + path);
+        EXPECT_EQ(j.exit_code, 1);
+        EXPECT_FALSE(json_lines(j.out).at(0).at("pass").get<bool>()) << j.out;
+        std::filesystem::remove(path);
+    }
+}
+
+TEST(Validate, TruncatedOrMissingFileExits2) {
+    const std::string &dir = tables_dir();
+    std::ifstream in(dir + "/airlight_F.slut", std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_GT(bytes.size(), 1000u);
+    const std::string path = stem() + "_truncated.slut";
+    std::ofstream(path, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+    EXPECT_EQ(run("validate " + path).exit_code, 2);
+    // A good file beside it does not hide the bad one.
+    EXPECT_EQ(run("validate " + dir + "/airlight_F.slut " + path).exit_code, 2);
+    EXPECT_EQ(run("validate " + stem() + "_does_not_exist.slut").exit_code, 2);
+    EXPECT_EQ(run("inspect " + path).exit_code, 2);
+    EXPECT_EQ(run("validate").exit_code, 2); // a file is required
+    std::filesystem::remove(path);
+}
+
+TEST(Validate, InspectTextAndJson) {
+    const std::string &dir = tables_dir();
+    const Result r = run("inspect " + dir + "/airlight_F.slut");
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_NE(r.out.find("airlight_F"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("format version  1.0"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("128 nodes"), std::string::npos) << r.out; // u axis
+    EXPECT_NE(r.out.find("64 nodes"), std::string::npos) << r.out;  // w axis
+    EXPECT_NE(r.out.find("asinh_cot"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("generate --out"), std::string::npos) << r.out; // command line recorded
+
+    for (const char *ext : {".slut", ".exr"}) {
+        const Result j = run("inspect --json " + dir + "/near_light_E4" + ext);
+        ASSERT_EQ(j.exit_code, 0) << j.out;
+        const auto doc = nlohmann::json::parse(j.out);
+        EXPECT_EQ(doc.at("kind"), "near_light_E4");
+        ASSERT_EQ(doc.at("axes").size(), 4u);
+        EXPECT_EQ(doc.at("axes")[0].at("name"), "T");
+        EXPECT_EQ(doc.at("axes")[3].at("name"), "S");
+        EXPECT_EQ(doc.at("channels")[0].at("encoding"), "log");
+        const double lo = doc.at("channels")[0].at("decoded_min"), hi = doc.at("channels")[0].at("decoded_max");
+        EXPECT_GT(lo, 0.0);
+        EXPECT_LE(hi, 1.0 + 1e-6);
+        EXPECT_GE(doc.at("accuracy").at("sampling_max_rel").get<double>(), 0.0);
+    }
+}
