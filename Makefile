@@ -10,7 +10,8 @@ DEB_PACKAGES := cmake g++ make pkg-config \
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo \
   libopenexr-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev \
   libboost-math-dev libgtest-dev libbenchmark-dev \
-  glslang-tools spirv-cross libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  glslang-tools spirv-cross libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri \
+  clang libclang-rt-14-dev
 
 .PHONY: all run test deps configure build clean
 
