@@ -12,39 +12,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "cli_runner.hpp"
 #include "reference_data.hpp"
 
 namespace {
 
-struct Result {
-    int exit_code;
-    std::string out;
-};
-
-// Runs the binary with `args` (shell syntax), optional stdin text; captures stdout.
-Result run(const std::string &args, const std::string &input = "") {
-    const std::string dir = testing::TempDir();
-    static int calls = 0; // ctest runs tests as parallel processes: unique names per call
-    const std::string stem = dir + "/slut_cli_" + std::to_string(getpid()) + "_" + std::to_string(++calls);
-    const std::string in_path = stem + ".in";
-    std::ofstream(in_path) << input;
-    const std::string command = std::string(SLUT_BINARY) + " " + args + " < " + in_path + " 2>" + stem + ".err";
-    FILE *pipe = popen(command.c_str(), "r");
-    std::string out;
-    char buffer[4096];
-    size_t n;
-    while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) out.append(buffer, n);
-    const int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
-std::vector<nlohmann::json> json_lines(const std::string &text) {
-    std::vector<nlohmann::json> out;
-    std::istringstream in(text);
-    std::string line;
-    while (std::getline(in, line)) out.push_back(nlohmann::json::parse(line));
-    return out;
-}
+using slut_test::json_lines;
+using Result = slut_test::RunResult;
+Result run(const std::string &args, const std::string &input = "") { return slut_test::run_scatterlut(args, input); }
 
 std::string out_dir() { return testing::TempDir() + "/slut_cli_tables_" + std::to_string(getpid()); }
 

@@ -14,31 +14,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "cli_runner.hpp"
 #include "scatterlut/io.hpp"
 
 namespace {
 
-struct Result {
-    int exit_code;
-    std::string out;
-};
-
-std::string stem() { return testing::TempDir() + "/slut_validate_" + std::to_string(getpid()); }
-
-// Runs the binary with `args` (shell syntax); captures stdout, stderr to a per-call file.
-Result run(const std::string &args) {
-    static int calls = 0; // ctest runs tests as parallel processes: unique names per call
-    const std::string err = stem() + "_" + std::to_string(++calls) + ".err";
-    const std::string command = std::string(SLUT_BINARY) + " " + args + " </dev/null 2>" + err;
-    FILE *pipe = popen(command.c_str(), "r");
-    std::string out;
-    char buffer[4096];
-    size_t n;
-    while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) out.append(buffer, n);
-    const int status = pclose(pipe);
-    std::filesystem::remove(err);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using Result = slut_test::RunResult;
+std::string stem() { return slut_test::temp_stem("validate"); }
+Result run(const std::string &args) { return slut_test::run_scatterlut(args); }
 
 // Small tables, generated once per test process.
 const std::string &tables_dir() {
@@ -54,14 +37,7 @@ const std::string &tables_dir() {
 
 const char *const kStems[] = {"airlight_F", "near_light_E3", "near_light_E4"};
 
-std::vector<nlohmann::json> json_lines(const std::string &text) {
-    std::vector<nlohmann::json> out;
-    std::istringstream in(text);
-    std::string line;
-    while (std::getline(in, line))
-        if (!line.empty()) out.push_back(nlohmann::json::parse(line));
-    return out;
-}
+using slut_test::json_lines;
 
 } // namespace
 

@@ -1,0 +1,53 @@
+// Runs the built `scatterlut` executable from a test: exit code and stdout.
+#pragma once
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace slut_test {
+
+struct RunResult {
+    int exit_code;
+    std::string out;
+};
+
+// A per-process prefix for temporary files: ctest runs tests as parallel processes.
+inline std::string temp_stem(const std::string &tag) {
+    return testing::TempDir() + "/slut_" + tag + "_" + std::to_string(getpid());
+}
+
+// Runs SLUT_BINARY with `args` (shell syntax) and `input` on stdin; captures stdout.
+inline RunResult run_scatterlut(const std::string &args, const std::string &input = "") {
+    static int calls = 0;
+    const std::string stem = temp_stem("run") + "_" + std::to_string(++calls);
+    std::ofstream(stem + ".in") << input;
+    const std::string command = std::string(SLUT_BINARY) + " " + args + " < " + stem + ".in 2>" + stem + ".err";
+    FILE *pipe = popen(command.c_str(), "r");
+    std::string out;
+    char buffer[4096];
+    size_t n;
+    while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) out.append(buffer, n);
+    const int status = pclose(pipe);
+    std::filesystem::remove(stem + ".in");
+    std::filesystem::remove(stem + ".err");
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+inline std::vector<nlohmann::json> json_lines(const std::string &text) {
+    std::vector<nlohmann::json> out;
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line)) out.push_back(nlohmann::json::parse(line));
+    return out;
+}
+
+} // namespace slut_test
