@@ -106,13 +106,10 @@ void answer_near_light(const nlohmann::json &q, nlohmann::json &out, const EvalT
         n.fresnel = q.at("fresnel").get<bool>();
     }
     put(out, "exact", near_light_radiance_exact(n)); // validates the query
-    double eye_inside[3] = {n.eye_dir[0], n.eye_dir[1], n.eye_dir[2]};
-    if (n.eta != 1.0) slut_refract_eye_dir(n.normal, n.eye_dir, n.eta, eye_inside);
-    slut_nl_params p;
-    slut_nl_params_from_geometry(n.normal, eye_inside, n.light_rel_m, n.sigma_s_per_m + n.sigma_a_per_m, n.length_m, &p);
-    const NearLightTable *t = (p.kind == SLUT_NL_OK) ? covering(tables, p.T, p.g, p.r, p.S) : nullptr;
+    const NearLightParams p = near_light_params(n);
+    const NearLightTable *t = p.light_below ? nullptr : covering(tables, p.T, p.g, p.r, p.S);
     if (t) put(out, "table", t->radiance(n));
-    else if (p.kind == SLUT_NL_LIGHT_BELOW && !tables.near_light.empty()) out["table"] = 0.0;
+    else if (p.light_below && !tables.near_light.empty()) out["table"] = 0.0;
     else out["table"] = nullptr;
     put(out, "approx", near_light_radiance_thin(n));
     put(out, "distant", near_light_radiance_distant(n));

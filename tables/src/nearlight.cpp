@@ -68,6 +68,17 @@ void check_near_light_query(const NearLightQuery &q) {
     for (int k = 0; k < 3; ++k) require(std::isfinite(q.light_rel_m[k]), "light_pos must be finite");
 }
 
+NearLightParams near_light_params(const NearLightQuery &q) {
+    const slut_nl_params p = params(q);
+    NearLightParams out;
+    out.light_below = p.kind != SLUT_NL_OK;
+    out.T = p.T;
+    out.g = p.g;
+    out.r = p.r;
+    out.S = p.S;
+    return out;
+}
+
 double near_light_radiance_exact(const NearLightQuery &q) {
     const slut_nl_params p = params(q);
     return assemble(q, p, p.T > 0.0 ? slut_nl_E(p.T, p.g, p.r, p.S) : 1.0);

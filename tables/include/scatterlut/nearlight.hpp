@@ -30,6 +30,14 @@ struct NearLightQuery {
 // non-unit normal or eye direction, a viewer below the surface (ω·n ≤ 0).
 void check_near_light_query(const NearLightQuery &q);
 
+// The dimensionless parameters of a query (after eye-side refraction). `light_below` is
+// true when no direct light enters the medium (radiance 0). Validates the query.
+struct NearLightParams {
+    bool light_below = false;
+    double T = 0, g = 0, r = 0, S = 0;
+};
+NearLightParams near_light_params(const NearLightQuery &q);
+
 // W/(m²·sr); 0 for a light below the surface plane; never NaN.
 double near_light_radiance_exact(const NearLightQuery &q);
 // Closed forms needing no table (DESIGN §1.3): the thin-medium approximation
