@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "measure_util.hpp"
+#include "table_build.hpp"
 #include "scatterlut/io.hpp"
 
 extern "C" {
@@ -19,23 +20,10 @@ Table make_airlight_table_layout(const AirlightPlan &plan) {
     Table t;
     t.kind = kKindAirlightF;
     t.quantity_version = kAirlightFQuantityVersion;
-    Axis u;
-    u.name = "u";
-    u.meaning = "optical distance sigma_t*D*sin(gamma) (dimensionless), first argument of F(u,v)";
-    u.map.min = 0.0;
-    u.map.max = plan.u_max;
-    u.map.scale = plan.u_scale;
-    u.map.warp = SLUT_WARP_LOG1P;
-    u.map.count = plan.n_u;
-    Axis w;
-    w.name = "w";
-    w.meaning = "pi/2 - v (rad), v the second argument of F(u,v)";
-    w.map.min = plan.w_min;
-    w.map.max = SLUT_PIO2_HI;
-    w.map.scale = 0.0;
-    w.map.warp = SLUT_WARP_ASINH_COT;
-    w.map.count = plan.n_w;
-    t.axes = {u, w};
+    t.axes = {make_axis("u", "optical distance sigma_t*D*sin(gamma) (dimensionless), first argument of F(u,v)", 0.0,
+                        plan.u_max, plan.u_scale, SLUT_WARP_LOG1P, plan.n_u),
+              make_axis("w", "pi/2 - v (rad), v the second argument of F(u,v)", plan.w_min, SLUT_PIO2_HI, 0.0,
+                        SLUT_WARP_ASINH_COT, plan.n_w)};
     Channel c;
     c.name = "ln_Gs";
     c.meaning = "ln of the scaled tail Gs(u,w) = exp(u cot w) * int_{pi/2-w}^{pi/2} exp(-u tan x) dx / w, in (0,1]";
@@ -58,13 +46,8 @@ Table generate_airlight_table(Device &device, const AirlightPlan &plan, const Pr
     cl::Buffer out(device.context(), CL_MEM_WRITE_ONLY, n * sizeof(double));
     int arg = 0;
     kernel.setArg(arg++, out);
-    for (const slut_axis *a : {&au, &aw}) {
-        kernel.setArg(arg++, a->min);
-        kernel.setArg(arg++, a->max);
-        kernel.setArg(arg++, a->scale);
-        kernel.setArg(arg++, a->warp);
-        kernel.setArg(arg++, a->count);
-    }
+    set_axis_args(kernel, &arg, au);
+    set_axis_args(kernel, &arg, aw);
     kernel.setArg(arg++, 1.0); // refine: the production rule
     // Rows in slices so that a terminal can show progress on large tables.
     const int rows_per_slice = std::max(1, aw.count / 16);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "measure_util.hpp"
+#include "table_build.hpp"
 #include "scatterlut/io.hpp"
 
 extern "C" {
@@ -17,19 +18,6 @@ extern "C" {
 
 namespace scatterlut {
 namespace {
-
-Axis make_axis(const char *name, const char *meaning, double min, double max, double scale, int warp, int count) {
-    Axis a;
-    a.name = name;
-    a.meaning = meaning;
-    a.map.min = min;
-    a.map.max = max;
-    a.map.scale = scale;
-    a.map.warp = warp;
-    a.map.count = count;
-    return a;
-}
-
 
 double S_of(const Table &t, const size_t *node) {
     return t.axes.size() == 4 ? slut_axis_node(&t.axes[3].map, static_cast<int>(node[3]))
@@ -71,29 +59,11 @@ Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const 
     cl::Buffer out(device.context(), CL_MEM_WRITE_ONLY, n * sizeof(double));
     int arg = 0;
     kernel.setArg(arg++, out);
-    for (size_t a = 0; a < 3; ++a) {
-        const slut_axis &m = t.axes[a].map;
-        kernel.setArg(arg++, m.min);
-        kernel.setArg(arg++, m.max);
-        kernel.setArg(arg++, m.scale);
-        kernel.setArg(arg++, m.warp);
-        kernel.setArg(arg++, m.count);
-    }
+    for (size_t a = 0; a < 3; ++a) set_axis_args(kernel, &arg, t.axes[a].map);
+    // A thick table has no S axis: the kernel reads one layer at S = +inf.
     const double inf = std::numeric_limits<double>::infinity();
-    if (plan.finite_thickness) {
-        const slut_axis &m = t.axes[3].map;
-        kernel.setArg(arg++, m.min);
-        kernel.setArg(arg++, m.max);
-        kernel.setArg(arg++, m.scale);
-        kernel.setArg(arg++, m.warp);
-        kernel.setArg(arg++, m.count);
-    } else {
-        kernel.setArg(arg++, inf);
-        kernel.setArg(arg++, inf);
-        kernel.setArg(arg++, 0.0);
-        kernel.setArg(arg++, static_cast<int>(SLUT_WARP_LINEAR));
-        kernel.setArg(arg++, 1);
-    }
+    const slut_axis thick = {inf, inf, 0.0, SLUT_WARP_LINEAR, 1};
+    set_axis_args(kernel, &arg, plan.finite_thickness ? t.axes[3].map : thick);
     kernel.setArg(arg++, 1.0);
     const size_t groups = static_cast<size_t>((plan.n_r + SLUT_NL_MAX_LANES - 1) / SLUT_NL_MAX_LANES);
     for (int iS = 0; iS < n_S; ++iS) { // one S layer at a time: progress on a terminal

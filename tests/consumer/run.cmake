@@ -2,12 +2,7 @@
 # against it with find_package, generate a table with the installed binary, run.
 # -DBUILD_DIR=… -DSOURCE_DIR=… -DWORK_DIR=…
 file(REMOVE_RECURSE "${WORK_DIR}")
-function(step)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
-  endif()
-endfunction()
+include("${SOURCE_DIR}/cmake/slut_step.cmake")
 step(${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WORK_DIR}/prefix")
 step(${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/consumer" -B "${WORK_DIR}/build" "-DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix")
 step(${CMAKE_COMMAND} --build "${WORK_DIR}/build")

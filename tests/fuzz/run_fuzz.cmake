@@ -4,12 +4,7 @@
 # -DSOURCE_DIR=… -DWORK_DIR=… -DGENERATOR=… -DSECONDS=… -DCLANGXX=…
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}/corpus" "${WORK_DIR}/artifacts")
-function(step)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
-  endif()
-endfunction()
+include("${SOURCE_DIR}/cmake/slut_step.cmake")
 set(src "${SOURCE_DIR}/tables/src")
 step(${CLANGXX} -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
      -DSCATTERLUT_HAS_OPENEXR=1 -I${SOURCE_DIR}/tables/include -I${SOURCE_DIR}/kernels
