@@ -26,6 +26,19 @@ double S_of(const Table &t, const size_t *node) {
 
 } // namespace
 
+NearLightPlan default_near_light_plan(bool finite_thickness) {
+    NearLightPlan plan;
+    plan.finite_thickness = finite_thickness;
+    if (finite_thickness) {
+        plan.n_T = 48;
+        plan.n_g = 40;
+        plan.n_r = 48;
+        plan.n_S = 24;
+        plan.r_scale = 1e-9;
+    }
+    return plan;
+}
+
 Table make_nearlight_table_layout(const NearLightPlan &plan) {
     Table t;
     t.kind = plan.finite_thickness ? kKindNearLightE4 : kKindNearLightE3;

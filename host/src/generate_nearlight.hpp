@@ -23,6 +23,10 @@ struct NearLightPlan {
     Storage storage = Storage::F32;
 };
 
+// The default plans: the 3-D table (S = ∞), and the 4-D one with r resolved down to 1e-9,
+// where thin slabs still see the light through their surface layer (docs/NEARLIGHT.md).
+NearLightPlan default_near_light_plan(bool finite_thickness);
+
 Table make_nearlight_table_layout(const NearLightPlan &plan);
 
 Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const Provenance &provenance,

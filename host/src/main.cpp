@@ -82,7 +82,6 @@ struct GenerateOptions {
     std::string storage = "f32";
     std::string device;
     AirlightPlan airlight;
-    NearLightPlan near_light; // the 3-D table; the 4-D one shares its T, g, r axes
 };
 
 void write_table(const Table &t, const std::string &out_dir, const std::string &stem, const std::string &format) {
@@ -137,17 +136,8 @@ int run_generate(const GenerateOptions &opt) {
     report(f, "airlight_F", std::to_string(air.n_u) + " x " + std::to_string(air.n_w) + " (u x w)", seconds_since(start));
 
     for (bool finite : {false, true}) {
-        NearLightPlan nl = opt.near_light;
+        NearLightPlan nl = default_near_light_plan(finite);
         nl.storage = storage;
-        nl.finite_thickness = finite;
-        if (finite) { // the 4-D default (docs/NEARLIGHT.md): r resolved down to 1e-9, where
-                      // thin slabs still see the light through their surface layer
-            nl.n_T = 48;
-            nl.n_g = 40;
-            nl.n_r = 48;
-            nl.n_S = 24;
-            nl.r_scale = 1e-9;
-        }
         const std::string stem = finite ? "near_light_E4" : "near_light_E3";
         start = std::chrono::steady_clock::now();
         const Table e = generate_nearlight_table(device, nl, provenance, Progress{isatty(STDERR_FILENO) != 0, stem});
