@@ -380,6 +380,37 @@ inline std::vector<float> run_compute(const std::string &source, const std::vect
     return results;
 }
 
+// The hardware filter's weight error: GL_LINEAR on a 2x1 ramp texture [0, 1] at texel
+// coordinate f between the two centres must return f; returns max |result - f| over 4096
+// fractions of a golden-ratio sequence (every mantissa bit in use): ~6e-8 with float
+// weights, up to 1/512 with 8-bit fixed-point weights; negative on error.
+inline double hardware_filter_weight_error() {
+    static const double measured = [] {
+        const std::string source = R"glsl(#version 430
+layout(local_size_x = 64) in;
+layout(binding = 0) uniform sampler2D ramp;
+layout(std430, binding = 1) readonly buffer Fractions { float f[]; };
+layout(std430, binding = 2) writeonly buffer Results { float r[]; };
+layout(std140, binding = 3) uniform Params { int n; };
+void main() {
+    int i = int(gl_GlobalInvocationID.x);
+    if (i < n) r[i] = textureLod(ramp, vec2((f[i] + 0.5) / 2.0, 0.5), 0.0).r;
+}
+)glsl";
+        const int n = 4096;
+        std::vector<float> f(n);
+        for (int i = 0; i < n; ++i) f[i] = static_cast<float>(std::fmod(0.5 + i * 0.6180339887498949, 1.0)); // all 24 bits used
+        const int32_t params[4] = {n, 0, 0, 0};
+        std::string error;
+        const std::vector<float> r = run_compute(source, {0.0f, 1.0f}, 2, 1, 0, f, n, params, sizeof params, &error);
+        if (!error.empty()) return -1.0;
+        double worst = 0;
+        for (int i = 0; i < n; ++i) worst = std::max(worst, std::fabs(static_cast<double>(r[i]) - f[i]));
+        return worst;
+    }();
+    return measured;
+}
+
 #endif // SLUT_HAVE_EGL
 
 } // namespace gpu_harness
