@@ -405,8 +405,9 @@ void main(uint3 id : SV_DispatchThreadID) {
 
 // A fragment / pixel shader using both snippets together, as an engine would (compile
 // checks: the shared part must be included once without clashes).
-std::string glsl_fragment_source() {
-    return "#version 330\nuniform sampler2D airlight_table;\nuniform sampler3D near_table;\n"
+std::string glsl_fragment_source(bool es) {
+    const std::string version = es ? "#version 300 es\nprecision highp float;\nprecision highp sampler3D;\n" : "#version 330\n";
+    return version + "uniform sampler2D airlight_table;\nuniform sampler3D near_table;\n"
            "uniform vec3 light_pos;\nuniform vec3 medium;\nin vec3 world_pos;\nin vec3 eye_pos;\n"
            "in vec3 normal;\nout vec4 colour;\n" +
            read_text(kShaderDir + "scatterlut_airlight.glsl") + glsl_snippet() + R"glsl(
@@ -613,8 +614,10 @@ TEST(NearLightShaderGlslang, GlslAndHlslCompile) {
                           "-D -V -e main -S comp -o " + gpu_harness::quoted(scratch_dir() + "/nl_compute_hlsl" + tag + ".spv")),
                   "");
     }
-    // Both snippets in one shader (the shared part once), GLSL 3.30 and an HLSL pixel shader.
-    EXPECT_EQ(glslang("nl_fragment.frag", glsl_fragment_source(), ""), "");
+    // Both snippets in one shader (the shared part once): GLSL 3.30, GLSL ES 3.00 and an
+    // HLSL pixel shader.
+    EXPECT_EQ(glslang("nl_fragment.frag", glsl_fragment_source(false), ""), "");
+    EXPECT_EQ(glslang("nl_fragment_es.frag", glsl_fragment_source(true), ""), "");
     EXPECT_EQ(glslang("nl_pixel.hlsl", hlsl_pixel_source(),
                       "-D -V -e main -S frag -o " + gpu_harness::quoted(scratch_dir() + "/nl_pixel.spv")),
               "");
