@@ -114,6 +114,22 @@ inline std::string glslang(const std::string &file_name, const std::string &sour
     return rc == 0 ? "" : command + "\n" + output;
 }
 
+// An HLSL compute shader -> SPIR-V (glslang) -> GLSL 4.30 (spirv-cross), files named by
+// `tag` in the scratch directory: what lets the HLSL run on the OpenGL context. Empty
+// string and *error on failure.
+inline std::string hlsl_compute_to_glsl(const std::string &tag, const std::string &hlsl, std::string *error) {
+    const std::string spv = scratch_dir() + "/run_" + tag + ".spv";
+    const std::string glsl = scratch_dir() + "/run_" + tag + ".comp";
+    *error = glslang("run_" + tag + ".hlsl", hlsl, "-D -V -e main -S comp -o " + quoted(spv));
+    if (!error->empty()) return "";
+    std::string output;
+    const std::string command = quoted(kSpirvCross) + " --version 430 --no-es " + quoted(spv) + " --output " + quoted(glsl);
+    if (run_command(command, &output) != 0) {
+        *error = command + "\n" + output;
+        return "";
+    }
+    return read_text(glsl);
+}
 
 // relative error; infinities must match, NaN never does, 0 only by 0.
 inline double rel_err(double got, double want) {

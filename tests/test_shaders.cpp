@@ -464,26 +464,6 @@ float4 main(float3 world_pos : TEXCOORD0, float3 eye_pos : TEXCOORD1) : SV_Targe
     return s;
 }
 
-// HLSL -> SPIR-V (glslang) -> GLSL 4.30 (spirv-cross). Empty string and *error on failure.
-std::string hlsl_to_glsl(bool hardware_filter, std::string *error) {
-    const std::string tag = hardware_filter ? "hw" : "fetch";
-    const std::string spv = scratch_dir() + "/run_" + tag + ".spv";
-    const std::string glsl = scratch_dir() + "/run_" + tag + ".comp";
-    std::string e = glslang("run_" + tag + ".hlsl", hlsl_compute_source(hardware_filter),
-                            "-D -V -e main -S comp -o " + quoted(spv));
-    if (!e.empty()) {
-        *error = e;
-        return "";
-    }
-    std::string output;
-    const std::string command = quoted(kSpirvCross) + " --version 430 --no-es " + quoted(spv) + " --output " + quoted(glsl);
-    if (run_command(command, &output) != 0) {
-        *error = command + "\n" + output;
-        return "";
-    }
-    return read_text(glsl);
-}
-
 // ---------------------------------------------------------------------- comparisons
 
 // Tolerances (relative, against the double C++ sampler on the same float-rounded table
@@ -781,7 +761,7 @@ TEST_F(GpuShaders, HlslMatchesTheCppSampler) {
         SLUT_SKIP_OR_FAIL("running the HLSL needs glslangValidator and spirv-cross (Debian: glslang-tools, spirv-cross)");
     for (bool hw : {false, true}) {
         std::string error;
-        const std::string glsl = hlsl_to_glsl(hw, &error);
+        const std::string glsl = hlsl_compute_to_glsl(hw ? "hw" : "fetch", hlsl_compute_source(hw), &error);
         ASSERT_EQ(error, "");
         const std::vector<float> got = run_on_gpu(glsl, &error);
         ASSERT_EQ(error, "");

@@ -307,6 +307,33 @@ const Run &queries(bool thick) {
 std::string glsl_snippet() { return read_text(kShaderDir + "scatterlut_nearlight.glsl"); }
 std::string hlsl_snippet() { return read_text(kShaderDir + "scatterlut_nearlight.hlsl"); }
 
+// What each invocation evaluates, written once for both languages with the snippets'
+// own prelude macros (SLUT_FLOAT3, SLUT_TEX_ARG): the test wrapper cannot drift between
+// GLSL and HLSL either.
+const char *kTestBody = R"slsl(
+SlutAxis test_axis(int k) {
+    return slut_axis_make(axis_f[k].x, axis_f[k].y, axis_f[k].z, axis_i[k].x, axis_i[k].y);
+}
+float test_eval(int i) {
+    SlutNearLightTable t;
+    if (layers == 1) t = slut_near_light_table_e3(test_axis(0), test_axis(1), test_axis(2));
+    else t = slut_near_light_table_e4(test_axis(0), test_axis(1), test_axis(2), test_axis(3));
+    int b = 20 * i;
+    int mode = int(q[b]);
+    SLUT_FLOAT3 n = SLUT_FLOAT3(q[b + 5], q[b + 6], q[b + 7]);
+    SLUT_FLOAT3 e = SLUT_FLOAT3(q[b + 8], q[b + 9], q[b + 10]);
+    SLUT_FLOAT3 l = SLUT_FLOAT3(q[b + 11], q[b + 12], q[b + 13]);
+    bool fresnel = q[b + 16] != 0.0;
+    if (mode == 0) return slut_near_light_E(SLUT_TEX_ARG(slut_test_table), t, q[b + 2], q[b + 3], q[b + 4], q[b + 5]);
+    if (mode == 1)
+        return slut_near_light_radiance(SLUT_TEX_ARG(slut_test_table), t, q[b + 2], q[b + 3], q[b + 4], n, e, l,
+                                        q[b + 14], q[b + 15], fresnel);
+    if (mode == 2)
+        return slut_near_light_radiance_thin(q[b + 2], q[b + 3], q[b + 4], n, e, l, q[b + 14], q[b + 15], fresnel);
+    return slut_near_light_radiance_distant(q[b + 2], q[b + 3], q[b + 4], n, e, l, q[b + 14], q[b + 15], fresnel);
+}
+)slsl";
+
 std::string glsl_compute_source(bool hardware_filter) {
     std::string s = "#version 430\n";
     if (hardware_filter) s += "#define SLUT_NEARLIGHT_HARDWARE_FILTER\n";
@@ -319,36 +346,11 @@ layout(std140, binding = 3) uniform SlutTestParams {
     vec4 axis_f[4]; ivec4 axis_i[4]; int layers; int n_queries;
 };
 )glsl";
-    s += glsl_snippet();
+    s += glsl_snippet() + kTestBody;
     s += R"glsl(
-SlutAxis test_axis(int k) {
-    return slut_axis_make(axis_f[k].x, axis_f[k].y, axis_f[k].z, axis_i[k].x, axis_i[k].y);
-}
 void main() {
     int i = int(gl_GlobalInvocationID.x);
-    if (i >= n_queries) return;
-    SlutNearLightTable t = (layers == 1) ? slut_near_light_table_e3(test_axis(0), test_axis(1), test_axis(2))
-                                         : slut_near_light_table_e4(test_axis(0), test_axis(1), test_axis(2), test_axis(3));
-    int b = 20 * i;
-    int mode = int(q[b]);
-    vec3 n = vec3(q[b + 5], q[b + 6], q[b + 7]);
-    vec3 e = vec3(q[b + 8], q[b + 9], q[b + 10]);
-    vec3 l = vec3(q[b + 11], q[b + 12], q[b + 13]);
-    bool fresnel = q[b + 16] != 0.0;
-    float result;
-    if (mode == 0) {
-        result = slut_near_light_E(slut_test_table, t, q[b + 2], q[b + 3], q[b + 4], q[b + 5]);
-    } else if (mode == 1) {
-        result = slut_near_light_radiance(slut_test_table, t, q[b + 2], q[b + 3], q[b + 4], n, e, l,
-                                          q[b + 14], q[b + 15], fresnel);
-    } else if (mode == 2) {
-        result = slut_near_light_radiance_thin(q[b + 2], q[b + 3], q[b + 4], n, e, l, q[b + 14],
-                                               q[b + 15], fresnel);
-    } else {
-        result = slut_near_light_radiance_distant(q[b + 2], q[b + 3], q[b + 4], n, e, l, q[b + 14],
-                                                  q[b + 15], fresnel);
-    }
-    res[i] = result;
+    if (i < n_queries) res[i] = test_eval(i);
 }
 )glsl";
     return s;
@@ -366,38 +368,12 @@ std::string hlsl_compute_source(bool hardware_filter) {
     float4 axis_f[4]; int4 axis_i[4]; int layers; int n_queries;
 };
 )hlsl";
-    s += hlsl_snippet();
+    s += hlsl_snippet() + kTestBody;
     s += R"hlsl(
-SlutAxis test_axis(int k) {
-    return slut_axis_make(axis_f[k].x, axis_f[k].y, axis_f[k].z, axis_i[k].x, axis_i[k].y);
-}
 [numthreads(64, 1, 1)]
 void main(uint3 id : SV_DispatchThreadID) {
     int i = int(id.x);
-    if (i >= n_queries) return;
-    SlutNearLightTable t;
-    if (layers == 1) t = slut_near_light_table_e3(test_axis(0), test_axis(1), test_axis(2));
-    else t = slut_near_light_table_e4(test_axis(0), test_axis(1), test_axis(2), test_axis(3));
-    int b = 20 * i;
-    int mode = int(q[b]);
-    float3 n = float3(q[b + 5], q[b + 6], q[b + 7]);
-    float3 e = float3(q[b + 8], q[b + 9], q[b + 10]);
-    float3 l = float3(q[b + 11], q[b + 12], q[b + 13]);
-    bool fresnel = q[b + 16] != 0.0;
-    float result;
-    if (mode == 0) {
-        result = slut_near_light_E(slut_test_table, slut_test_table_sampler, t, q[b + 2], q[b + 3], q[b + 4], q[b + 5]);
-    } else if (mode == 1) {
-        result = slut_near_light_radiance(slut_test_table, slut_test_table_sampler, t, q[b + 2], q[b + 3],
-                                          q[b + 4], n, e, l, q[b + 14], q[b + 15], fresnel);
-    } else if (mode == 2) {
-        result = slut_near_light_radiance_thin(q[b + 2], q[b + 3], q[b + 4], n, e, l, q[b + 14],
-                                               q[b + 15], fresnel);
-    } else {
-        result = slut_near_light_radiance_distant(q[b + 2], q[b + 3], q[b + 4], n, e, l, q[b + 14],
-                                                  q[b + 15], fresnel);
-    }
-    res[i] = result;
+    if (i < n_queries) res[i] = test_eval(i);
 }
 )hlsl";
     return s;
@@ -437,20 +413,6 @@ float4 main(float3 world_pos : TEXCOORD0, float3 eye_pos : TEXCOORD1, float3 nor
     return float4(L, L, L, 1.0);
 }
 )hlsl";
-}
-
-std::string hlsl_to_glsl(bool hardware_filter, std::string *error) {
-    const std::string tag = hardware_filter ? "nl_hw" : "nl";
-    const std::string spv = scratch_dir() + "/run_" + tag + ".spv", glsl = scratch_dir() + "/run_" + tag + ".comp";
-    *error = glslang("run_" + tag + ".hlsl", hlsl_compute_source(hardware_filter), "-D -V -e main -S comp -o " + gpu_harness::quoted(spv));
-    if (!error->empty()) return "";
-    std::string output;
-    const std::string command = gpu_harness::quoted(kSpirvCross) + " --version 430 --no-es " + gpu_harness::quoted(spv) + " --output " + gpu_harness::quoted(glsl);
-    if (run_command(command, &output) != 0) {
-        *error = command + "\n" + output;
-        return "";
-    }
-    return read_text(glsl);
 }
 
 // ---------------------------------------------------------------------- comparisons
@@ -667,7 +629,7 @@ TEST_F(NearLightGpu, HlslMatchesTheCppSampler) {
     if (kGlslang.empty() || kSpirvCross.empty())
         SLUT_SKIP_OR_FAIL("running the HLSL needs glslangValidator and spirv-cross (Debian: glslang-tools, spirv-cross)");
     std::string error;
-    const std::string glsl = hlsl_to_glsl(false, &error);
+    const std::string glsl = hlsl_compute_to_glsl("nl", hlsl_compute_source(false), &error);
     ASSERT_EQ(error, "");
     for (bool thick : {true, false}) {
         const std::vector<float> got = run_on_gpu(glsl, thick, &error);
