@@ -64,6 +64,17 @@ inline void write_text(const std::string &path, const std::string &text) {
     if (!out) throw std::runtime_error("cannot write " + path);
 }
 
+// The part of a generated snippet outside its language prelude (cmake/assemble_shaders.cmake
+// writes the markers): identical in the GLSL and the HLSL file.
+inline const char *kBodyBegin = "// ==== BEGIN SHARED BODY";
+inline const char *kBodyEnd = "// ==== END SHARED BODY ====";
+
+inline std::string shared_body(const std::string &text) {
+    const size_t b = text.find(kBodyBegin), e = text.find(kBodyEnd);
+    if (b == std::string::npos || e == std::string::npos || e < b) return "";
+    return text.substr(b, e - b);
+}
+
 // A scratch directory for this process (tool inputs and outputs), removed at exit unless
 // SLUT_KEEP_SHADER_SCRATCH is set (to inspect what glslang / spirv-cross were given).
 struct ScratchDir {

@@ -1,9 +1,10 @@
-// The GPU sampling snippets (tables/shaders/scatterlut_airlight.{glsl,hlsl}) against the
-// truth they must reproduce: the C++ runtime sampler (scatterlut::AirlightTable,
+// The airlight GPU sampling snippets (scatterlut_airlight.{glsl,hlsl}, generated at build
+// time from tables/shaders/src and the SLUT_SHADER regions of kernels/; docs/SHADERS.md)
+// against the truth they must reproduce: the C++ runtime sampler (scatterlut::AirlightTable,
 // tables/src/airlight.cpp, itself tested against Boost.Math in test_airlight.cpp) on the
-// same table. The snippets are written by hand in single precision; these tests are what
-// keeps them from drifting:
-//   - ShaderSources: the GLSL and HLSL bodies are byte-identical, ASCII, and their
+// same table. The snippets run in single precision; these tests are what keeps them
+// from drifting:
+//   - ShaderSources: the GLSL and HLSL files agree outside their preludes, are ASCII, and their
 //     constants (warp ids, regimes, Gauss-Legendre rule) equal kernels/slut_*.h;
 //   - ShaderGlslang: both compile with glslang (GLSL for OpenGL and Vulkan, compute and
 //     fragment; HLSL compute and pixel), with and without the hardware-filter option;
@@ -58,14 +59,6 @@ const std::string &hlsl_snippet() {
     return text;
 }
 
-const char *kBodyBegin = "// ==== BEGIN SHARED BODY";
-const char *kBodyEnd = "// ==== END SHARED BODY ====";
-
-std::string shared_body(const std::string &text) {
-    const size_t b = text.find(kBodyBegin), e = text.find(kBodyEnd);
-    if (b == std::string::npos || e == std::string::npos || e < b) return "";
-    return text.substr(b, e - b);
-}
 
 
 // ------------------------------------------------------------------------ the table

@@ -563,6 +563,23 @@ TEST(NearLightShaderQueries, CoverTheDomainAndEveryPath) {
     }
 }
 
+// Generated from one source: the GLSL and HLSL files agree outside their preludes, are
+// ASCII, and carry the kernels/ regions verbatim (the axis maps and the closed-form H).
+TEST(NearLightShaderSources, OneBodyFromTheCHeaders) {
+    const std::string g = shared_body(glsl_snippet()), h = shared_body(hlsl_snippet());
+    ASSERT_FALSE(g.empty()) << "SHARED BODY markers missing in scatterlut_nearlight.glsl";
+    EXPECT_TRUE(g == h) << "the GLSL and HLSL near-light snippets differ outside their preludes";
+    for (const std::string &text : {glsl_snippet(), hlsl_snippet()}) {
+        const auto it = std::find_if(text.begin(), text.end(), [](char c) { return static_cast<unsigned char>(c) > 127; });
+        EXPECT_EQ(it, text.end()) << "non-ASCII byte at offset " << (it - text.begin());
+    }
+    for (const char *function : {"SLUT_FN double slut_warp_forward(int warp, double p, double p_min, double scale)",
+                                 "SLUT_FN double slut_nl_H_scaled(double g, double S_over_T)",
+                                 "SLUT_FN double slut_nl_E_thin(double r, double S)"}) {
+        EXPECT_NE(g.find(function), std::string::npos) << function << " is not copied from kernels/";
+    }
+}
+
 TEST(NearLightShaderGlslang, GlslAndHlslCompile) {
     if (kGlslang.empty()) SLUT_SKIP_OR_FAIL("glslangValidator was not found at configure time (Debian: glslang-tools)");
     for (bool hw : {false, true}) {
