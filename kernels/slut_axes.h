@@ -21,12 +21,19 @@
  *                                                         p → 0, linear in v near v = 0)
  *   SQRT1P    g(p) = sqrt(1 + p),    p ∈ [−1, 1]        (follows √(1+g), the width of a
  *                                                         peak as g → −1)
+ *
+ * Compiled three times: as OpenCL C (generator), as C++ (runtime sampler, validator) and,
+ * the part between SLUT_SHADER_BEGIN and SLUT_SHADER_END, as GLSL and HLSL in float
+ * (cmake/assemble_shaders.cmake copies it into the snippets; docs/SHADERS.md). That part
+ * keeps to the subset all four share: no pointers, no structs, casts through SLUT_INT /
+ * SLUT_DOUBLE, math functions the shader preludes provide (slut_compat.h lists them).
  */
 #ifndef SLUT_AXES_H
 #define SLUT_AXES_H
 
 #include "slut_compat.h"
 
+/* SLUT_SHADER_BEGIN (the axis maps: also the GLSL/HLSL snippets') */
 #define SLUT_WARP_LINEAR 0
 #define SLUT_WARP_LOG 1
 #define SLUT_WARP_LOG1P 2
@@ -34,20 +41,11 @@
 #define SLUT_WARP_SQRT1P 4
 #define SLUT_WARP_COUNT 5
 
-/* One axis as the maps need it (plain data, identical in C++ and OpenCL C). */
-typedef struct slut_axis {
-    double min;   /* parameter at node 0 */
-    double max;   /* parameter at node count − 1 */
-    double scale; /* warp parameter (LOG1P: s); unused by the others */
-    int warp;     /* SLUT_WARP_* */
-    int count;    /* nodes, ≥ 2 */
-} slut_axis;
-
 /* Warp g(p). */
-SLUT_FN double slut_warp_forward(int warp, double p, double min, double scale) {
+SLUT_FN double slut_warp_forward(int warp, double p, double p_min, double scale) {
     switch (warp) {
     case SLUT_WARP_LOG: return log(p);
-    case SLUT_WARP_LOG1P: return log1p((p - min) / scale);
+    case SLUT_WARP_LOG1P: return log1p((p - p_min) / scale);
     case SLUT_WARP_ASINH_COT: {
         /* asinh(cot p) = ln(cot p + csc p) = ln((1 + cos p)/sin p); the last form keeps
            full relative precision as p → 0 and is exact 0 at p = π/2. */
@@ -59,10 +57,10 @@ SLUT_FN double slut_warp_forward(int warp, double p, double min, double scale) {
 }
 
 /* Inverse warp g⁻¹(y). */
-SLUT_FN double slut_warp_inverse(int warp, double y, double min, double scale) {
+SLUT_FN double slut_warp_inverse(int warp, double y, double p_min, double scale) {
     switch (warp) {
     case SLUT_WARP_LOG: return exp(y);
-    case SLUT_WARP_LOG1P: return min + scale * expm1(y);
+    case SLUT_WARP_LOG1P: return p_min + scale * expm1(y);
     case SLUT_WARP_ASINH_COT: {
         /* y = −asinh(cot p)  ⇒  cot p = sinh(−y)  ⇒  p = atan2(1, sinh(−y)). */
         return atan2(1.0, sinh(-y));
@@ -72,11 +70,45 @@ SLUT_FN double slut_warp_inverse(int warp, double y, double min, double scale) {
     }
 }
 
+/* Parameter → unit coordinate x (not clamped), for an axis [p_min, p_max] with this warp. */
+SLUT_FN double slut_unit_from_warp(int warp, double p, double p_min, double p_max, double scale) {
+    double g0 = slut_warp_forward(warp, p_min, p_min, scale);
+    double g1 = slut_warp_forward(warp, p_max, p_min, scale);
+    return (slut_warp_forward(warp, p, p_min, scale) - g0) / (g1 - g0);
+}
+
+/* Unit coordinate → GPU texture coordinate (texel centres at the domain ends). */
+SLUT_FN double slut_texcoord_from_unit(double x, int count) {
+    return (slut_clamp(x, 0.0, 1.0) * SLUT_DOUBLE(count - 1) + 0.5) / SLUT_DOUBLE(count);
+}
+
+/* Unit coordinate → position in nodes from node 0, clamped to [0, count − 1]
+   (clamp-to-edge, never wrap). */
+SLUT_FN double slut_node_position_from_unit(double x, int count) {
+    return slut_clamp(x, 0.0, 1.0) * SLUT_DOUBLE(count - 1);
+}
+
+/* Node position t → the lower node i0 of the cell holding it (≤ count − 2) and the
+   fraction f = t − i0 ∈ [0, 1] for linear interpolation between nodes i0 and i0 + 1. */
+SLUT_FN int slut_cell_index(double t, int count) {
+    int i = SLUT_INT(t);
+    return (i > count - 2) ? count - 2 : i;
+}
+SLUT_FN double slut_cell_fraction(double t, int i0) { return t - SLUT_DOUBLE(i0); }
+/* SLUT_SHADER_END */
+
+/* One axis as the maps need it (plain data, identical in C++ and OpenCL C). */
+typedef struct slut_axis {
+    double min;   /* parameter at node 0 */
+    double max;   /* parameter at node count − 1 */
+    double scale; /* warp parameter (LOG1P: s); unused by the others */
+    int warp;     /* SLUT_WARP_* */
+    int count;    /* nodes, ≥ 2 */
+} slut_axis;
+
 /* Parameter → unit coordinate x (not clamped). */
 SLUT_FN double slut_unit_from_param(const slut_axis *a, double p) {
-    double g0 = slut_warp_forward(a->warp, a->min, a->min, a->scale);
-    double g1 = slut_warp_forward(a->warp, a->max, a->min, a->scale);
-    return (slut_warp_forward(a->warp, p, a->min, a->scale) - g0) / (g1 - g0);
+    return slut_unit_from_warp(a->warp, p, a->min, a->max, a->scale);
 }
 
 /* Unit coordinate x → parameter. Node i is slut_param_from_unit(a, i/(count−1)). */
@@ -93,19 +125,12 @@ SLUT_FN double slut_axis_node(const slut_axis *a, int i) {
     return slut_param_from_unit(a, (double)i / (double)(a->count - 1));
 }
 
-/* Unit coordinate → GPU texture coordinate (texel centres at the domain ends). */
-SLUT_FN double slut_texcoord_from_unit(double x, int count) {
-    return (slut_clamp(x, 0.0, 1.0) * (double)(count - 1) + 0.5) / (double)count;
-}
-
 /* Unit coordinate → (node index i0, fraction f) for linear interpolation between
    nodes i0 and i0 + 1; clamped to the domain (clamp-to-edge, never wrap). */
 SLUT_FN void slut_cell_from_unit(double x, int count, int *i0, double *f) {
-    double t = slut_clamp(x, 0.0, 1.0) * (double)(count - 1);
-    int i = (int)t;
-    if (i > count - 2) i = count - 2;
-    *i0 = i;
-    *f = t - (double)i;
+    double t = slut_node_position_from_unit(x, count);
+    *i0 = slut_cell_index(t, count);
+    *f = slut_cell_fraction(t, *i0);
 }
 
 #endif /* SLUT_AXES_H */

@@ -10,6 +10,15 @@
  * Rules for shared code: C99 syntax, outputs through pointers (no
  * references), no templates, no standard library beyond <math.h> functions,
  * double precision throughout.
+ *
+ * The regions of kernels/ headers between SLUT_SHADER_BEGIN and SLUT_SHADER_END are
+ * compiled a third time, as GLSL and HLSL in float (cmake/assemble_shaders.cmake and
+ * tables/shaders/src/common.slsl, which define everything below for the GPU). There,
+ * in addition: no pointers, structs or arrays; conversions only through SLUT_INT(x) and
+ * SLUT_DOUBLE(x) (GLSL has no C casts and no implicit int → float); "counts as
+ * infinite" thresholds as SLUT_INFINITE_ABOVE and SLUT_TINY (1e300 has no float);
+ * math from log, log1p, exp, expm1, sqrt, sin, cos, sinh, atan, atan2, fabs, fmin,
+ * fmax (the GPU versions keep relative precision where GPU built-ins do not).
  */
 #ifndef SLUT_COMPAT_H
 #define SLUT_COMPAT_H
@@ -34,6 +43,11 @@
 #  define SLUT_HUGE_VAL HUGE_VAL
 #  define SLUT_ISFINITE(x) isfinite(x)
 #endif
+
+#define SLUT_INT(x) ((int)(x))
+#define SLUT_DOUBLE(x) ((double)(x))
+#define SLUT_INFINITE_ABOVE 1e300 /* a length, S or r above this is +∞ */
+#define SLUT_TINY 1e-300          /* below this an argument counts as 0 */
 
 /* π/2 split so that π/2 − v is exact for v near π/2 (Sterbenz, plus the tail). */
 #define SLUT_PI 3.14159265358979323846

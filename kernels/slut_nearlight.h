@@ -29,6 +29,7 @@
 
 /* ------------------------------------------------------------------ small helpers */
 
+/* SLUT_SHADER_BEGIN (the closed-form H: also the GLSL/HLSL snippets') */
 /* √(1 − g²) without cancellation as |g| → 1 (1 − |g| is exact for |g| ≥ ½, Sterbenz). */
 SLUT_FN double slut_nl_sin_from_cos(double g) {
     double a = fabs(g);
@@ -52,7 +53,7 @@ SLUT_FN double slut_nl_atanc(double x) { return (x == 0.0) ? 1.0 : atan(x) / x; 
  * Citation: elementary; the angle substitution of Sun et al. 2005 (the airlight F, §1.1). */
 SLUT_FN double slut_nl_inv_square_integral(double len, double hh2, double d, double w) {
     if (!(len > 0.0)) return 0.0;
-    if (len > 1e300) {
+    if (len > SLUT_INFINITE_ABOVE) {
         if (d > 0.0) return slut_nl_atanc(w / d) / d;
         if (!(w > 0.0)) return SLUT_HUGE_VAL;
         if (d == 0.0) return 0.5 * SLUT_PI / w;
@@ -64,6 +65,8 @@ SLUT_FN double slut_nl_inv_square_integral(double len, double hh2, double d, dou
     if (den == 0.0) return 0.5 * SLUT_PI / w;
     return (SLUT_PI - atan(len * w / (-den))) / w;
 }
+
+/* SLUT_SHADER_END */
 
 /* Range checks shared by the entry points: rounding at the edges is tolerated (g is clamped
  * to [−1, 1]), real violations (NaN, negative T, r or S, |g| > 1 beyond rounding) are
@@ -77,11 +80,13 @@ SLUT_FN double slut_nl_checked_g(double T, double g, double r, double S) {
 
 /* ------------------------------------------------------------------ H (closed form) */
 
+/* SLUT_SHADER_BEGIN */
 /* T·H(T, g, S) = ∫_0^{S/T} (τ² + 2τg + 1)^{−1} dτ: H in units of 1/T, a function of (g, S/T)
  * only. Bounded for T → 0 and T → ∞ (H itself overflows or underflows there). */
 SLUT_FN double slut_nl_H_scaled(double g, double S_over_T) {
     return slut_nl_inv_square_integral(S_over_T, 1.0, g, slut_nl_sin_from_cos(g));
 }
+/* SLUT_SHADER_END */
 
 /* H(T, g, S) = ∫_0^S ĥ^{−2} dt
  *            = atan2(S√(1−g²), T + S g)/(T√(1−g²))       (DESIGN §1.2, in angle-difference form)
@@ -381,6 +386,7 @@ SLUT_FN double slut_refract_eye_dir(const double *normal, const double *eye_dir,
     return cos_t;
 }
 
+/* SLUT_SHADER_BEGIN (Fresnel and the closed forms: also the GLSL/HLSL snippets') */
 /* Unpolarised Fresnel transmittance 1 − (R_s + R_p)/2 through the interface, from the
  * cosines on the outside (cos_i) and the inside (cos_t) and η = n_medium/n_outside. */
 SLUT_FN double slut_fresnel_transmittance(double cos_i, double cos_t, double eta) {
@@ -399,9 +405,9 @@ SLUT_FN double slut_fresnel_transmittance(double cos_i, double cos_t, double eta
 SLUT_FN double slut_distant_light_factor(double r, double S) {
     SLUT_ASSERT(r >= 0.0 && S >= 0.0);
     if (!(S > 0.0) || !(r > 0.0)) return 0.0;
-    if (r > 1e300) return -expm1(-S);
+    if (r > SLUT_INFINITE_ABOVE) return -expm1(-S);
     double frac = r / (1.0 + r);
-    if (S > 1e300) return frac;
+    if (S > SLUT_INFINITE_ABOVE) return frac;
     return frac * -expm1(-S / frac);
 }
 
@@ -413,7 +419,7 @@ SLUT_FN double slut_distant_light_radiance(double sigma_s_per_m, double sigma_a_
                                            double mu_e, double mu_l, double length_m) {
     double sigma_t = sigma_s_per_m + sigma_a_per_m;
     if (!(mu_e > 0.0) || !(mu_l > 0.0) || !(sigma_s_per_m > 0.0) || !(length_m > 0.0)) return 0.0;
-    double S = (length_m > 1e300) ? SLUT_HUGE_VAL : sigma_t * length_m;
+    double S = (length_m > SLUT_INFINITE_ABOVE) ? SLUT_HUGE_VAL : sigma_t * length_m;
     return (sigma_s_per_m / sigma_t) * SLUT_INV_4PI * L_in * slut_distant_light_factor(mu_l / mu_e, S);
 }
 
@@ -424,11 +430,13 @@ SLUT_FN double slut_distant_light_radiance(double sigma_s_per_m, double sigma_a_
 SLUT_FN double slut_nl_E_thin(double r, double S) {
     SLUT_ASSERT(r >= 0.0 && S >= 0.0);
     if (!(S > 0.0)) return 1.0;
-    if (!(r > 0.0) || S > 1e300) return 0.0;
-    double x = (r > 1e300) ? S : S * ((1.0 + r) / r);
-    if (x < 1e-300) return 1.0;
+    if (!(r > 0.0) || S > SLUT_INFINITE_ABOVE) return 0.0;
+    double x = (r > SLUT_INFINITE_ABOVE) ? S : S * ((1.0 + r) / r);
+    if (x < SLUT_TINY) return 1.0;
     return -expm1(-x) / x;
 }
+
+/* SLUT_SHADER_END */
 
 /* N ≈ H(T, g, S)·(1 − e^{−(1+c)S})/((1+c)S): closed-form H times slut_nl_E_thin. */
 SLUT_FN double slut_nl_N_thin(double T, double g, double r, double S) {

@@ -1,9 +1,10 @@
-// The GPU sampling snippets (tables/shaders/scatterlut_airlight.{glsl,hlsl}) against the
-// truth they must reproduce: the C++ runtime sampler (scatterlut::AirlightTable,
+// The airlight GPU sampling snippets (scatterlut_airlight.{glsl,hlsl}, generated at build
+// time from tables/shaders/src and the SLUT_SHADER regions of kernels/; docs/SHADERS.md)
+// against the truth they must reproduce: the C++ runtime sampler (scatterlut::AirlightTable,
 // tables/src/airlight.cpp, itself tested against Boost.Math in test_airlight.cpp) on the
-// same table. The snippets are written by hand in single precision; these tests are what
-// keeps them from drifting:
-//   - ShaderSources: the GLSL and HLSL bodies are byte-identical, ASCII, and their
+// same table. The snippets run in single precision; these tests are what keeps them
+// from drifting:
+//   - ShaderSources: the GLSL and HLSL files agree outside their preludes, are ASCII, and their
 //     constants (warp ids, regimes, Gauss-Legendre rule) equal kernels/slut_*.h;
 //   - ShaderGlslang: both compile with glslang (GLSL for OpenGL and Vulkan, compute and
 //     fragment; HLSL compute and pixel), with and without the hardware-filter option;
@@ -42,49 +43,12 @@ extern "C" {
 #include "slut_axes.h"
 }
 
-#if SLUT_HAVE_EGL
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
-#include <GL/glcorearb.h>
-#endif
-
-#ifndef SLUT_GLSLANG_VALIDATOR
-#define SLUT_GLSLANG_VALIDATOR ""
-#endif
-#ifndef SLUT_SPIRV_CROSS
-#define SLUT_SPIRV_CROSS ""
-#endif
-#ifndef SLUT_REQUIRE_SHADER_TESTS
-#define SLUT_REQUIRE_SHADER_TESTS 0
-#endif
+#include "gpu_harness.hpp"
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-const std::string kShaderDir = std::string(SLUT_SOURCE_DIR) + "/tables/shaders/";
-const std::string kGlslang = SLUT_GLSLANG_VALIDATOR;
-const std::string kSpirvCross = SLUT_SPIRV_CROSS;
-
-// A missing tool or display: skip, or fail where the build asked for the shader tests.
-#define SLUT_SKIP_OR_FAIL(message)                                                         \
-    do {                                                                                   \
-        if (SLUT_REQUIRE_SHADER_TESTS) FAIL() << (message);                                \
-        GTEST_SKIP() << (message);                                                         \
-    } while (0)
-
-std::string read_text(const std::string &path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error("cannot read " + path);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-void write_text(const std::string &path, const std::string &text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error("cannot write " + path);
-}
+using namespace gpu_harness;
 
 const std::string &glsl_snippet() {
     static const std::string text = read_text(kShaderDir + "scatterlut_airlight.glsl");
@@ -95,52 +59,7 @@ const std::string &hlsl_snippet() {
     return text;
 }
 
-const char *kBodyBegin = "// ==== BEGIN SHARED BODY";
-const char *kBodyEnd = "// ==== END SHARED BODY ====";
 
-std::string shared_body(const std::string &text) {
-    const size_t b = text.find(kBodyBegin), e = text.find(kBodyEnd);
-    if (b == std::string::npos || e == std::string::npos || e < b) return "";
-    return text.substr(b, e - b);
-}
-
-// A scratch directory for this process (tool inputs and outputs), removed at exit unless
-// SLUT_KEEP_SHADER_SCRATCH is set (to inspect what glslang / spirv-cross were given).
-struct ScratchDir {
-    std::string path;
-    ScratchDir() {
-        std::string templ = (std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp");
-        templ += "/slut_shaders_XXXXXX";
-        std::vector<char> buf(templ.begin(), templ.end());
-        buf.push_back('\0');
-        if (!mkdtemp(buf.data())) throw std::runtime_error("mkdtemp failed in " + templ);
-        path = buf.data();
-    }
-    ~ScratchDir() {
-        std::error_code ec;
-        if (!std::getenv("SLUT_KEEP_SHADER_SCRATCH")) std::filesystem::remove_all(path, ec);
-    }
-};
-
-const std::string &scratch_dir() {
-    static const ScratchDir dir;
-    return dir.path;
-}
-
-// Runs a command, returns its exit status; its output (stdout + stderr) in *output.
-int run_command(const std::string &command, std::string *output) {
-    FILE *pipe = popen((command + " 2>&1").c_str(), "r");
-    if (!pipe) return -1;
-    std::string text;
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) text.append(buf, n);
-    const int status = pclose(pipe);
-    if (output) *output = text;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string quoted(const std::string &s) { return "'" + s + "'"; }
 
 // ------------------------------------------------------------------------ the table
 
@@ -538,37 +457,6 @@ float4 main(float3 world_pos : TEXCOORD0, float3 eye_pos : TEXCOORD1) : SV_Targe
     return s;
 }
 
-// glslangValidator on a source written to the scratch directory; "" on success, else the
-// command and its output.
-std::string glslang(const std::string &file_name, const std::string &source, const std::string &options) {
-    const std::string path = scratch_dir() + "/" + file_name;
-    write_text(path, source);
-    const std::string command = quoted(kGlslang) + " " + options + " " + quoted(path);
-    std::string output;
-    const int rc = run_command(command, &output);
-    return rc == 0 ? "" : command + "\n" + output;
-}
-
-// HLSL -> SPIR-V (glslang) -> GLSL 4.30 (spirv-cross). Empty string and *error on failure.
-std::string hlsl_to_glsl(bool hardware_filter, std::string *error) {
-    const std::string tag = hardware_filter ? "hw" : "fetch";
-    const std::string spv = scratch_dir() + "/run_" + tag + ".spv";
-    const std::string glsl = scratch_dir() + "/run_" + tag + ".comp";
-    std::string e = glslang("run_" + tag + ".hlsl", hlsl_compute_source(hardware_filter),
-                            "-D -V -e main -S comp -o " + quoted(spv));
-    if (!e.empty()) {
-        *error = e;
-        return "";
-    }
-    std::string output;
-    const std::string command = quoted(kSpirvCross) + " --version 430 --no-es " + quoted(spv) + " --output " + quoted(glsl);
-    if (run_command(command, &output) != 0) {
-        *error = command + "\n" + output;
-        return "";
-    }
-    return read_text(glsl);
-}
-
 // ---------------------------------------------------------------------- comparisons
 
 // Tolerances (relative, against the double C++ sampler on the same float-rounded table
@@ -591,51 +479,16 @@ std::string hlsl_to_glsl(bool hardware_filter, std::string *error) {
 constexpr double kTolGs = 1e-5, kTolRadiance = 1e-5, kTolPerOpticalDistance = 4e-7;
 
 
-double rel_err(double got, double want) {
-    if (std::isinf(want) || std::isinf(got)) return (got == want) ? 0.0 : std::numeric_limits<double>::infinity();
-    if (std::isnan(got)) return std::numeric_limits<double>::infinity();
-    if (want == 0.0) return got == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
-    return std::fabs(got - want) / std::fabs(want);
-}
-
-struct Stats {
-    double max = 0, p99 = 0, median = 0;
-    double max_ratio = 0; // worst error / tolerance
-    size_t count = 0, worst = 0, worst_ratio = 0;
-};
-
-// Relative errors of one category, and their ratio to a per-query tolerance. References
-// below kFloor (radiance that float cannot hold to its full precision) are compared
-// absolutely against kFloor.
-constexpr double kFloor = 1e-30;
-
+// Relative errors of one category of queries (see gpu_harness::error_stats).
 template <class Tolerance>
 Stats stats_for(const std::vector<float> &got, const std::string &label, const Tolerance &tolerance) {
-    std::vector<double> errs;
-    Stats st;
+    std::vector<double> reference;
+    std::vector<size_t> indices;
     for (size_t i = 0; i < queries().size(); ++i) {
-        const Query &q = queries()[i];
-        if (q.label != label) continue;
-        double e = rel_err(got[i], q.reference);
-        if (std::isfinite(q.reference) && std::fabs(q.reference) < kFloor && std::isfinite(got[i]))
-            e = std::fabs(got[i] - q.reference) / kFloor;
-        errs.push_back(e);
-        if (e >= st.max) {
-            st.max = e;
-            st.worst = i;
-        }
-        const double ratio = e / tolerance(q);
-        if (ratio >= st.max_ratio) {
-            st.max_ratio = ratio;
-            st.worst_ratio = i;
-        }
+        reference.push_back(queries()[i].reference);
+        if (queries()[i].label == label) indices.push_back(i);
     }
-    st.count = errs.size();
-    if (errs.empty()) return st;
-    std::sort(errs.begin(), errs.end());
-    st.p99 = errs[static_cast<size_t>(0.99 * static_cast<double>(errs.size() - 1))];
-    st.median = errs[errs.size() / 2];
-    return st;
+    return error_stats(got, reference, indices, [&](size_t i) { return tolerance(queries()[i]); });
 }
 
 // sigma_t D of a radiance or points query (float's exp(-sigma_t D) error grows with it).
@@ -653,216 +506,6 @@ double optical_distance(const Query &q) {
 
 #if SLUT_HAVE_EGL
 
-#define SLUT_GL_FUNCTIONS(X)                                                               \
-    X(PFNGLGETSTRINGPROC, glGetString)                                                     \
-    X(PFNGLGETERRORPROC, glGetError)                                                       \
-    X(PFNGLCREATESHADERPROC, glCreateShader)                                               \
-    X(PFNGLSHADERSOURCEPROC, glShaderSource)                                               \
-    X(PFNGLCOMPILESHADERPROC, glCompileShader)                                             \
-    X(PFNGLGETSHADERIVPROC, glGetShaderiv)                                                 \
-    X(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog)                                       \
-    X(PFNGLDELETESHADERPROC, glDeleteShader)                                               \
-    X(PFNGLCREATEPROGRAMPROC, glCreateProgram)                                             \
-    X(PFNGLATTACHSHADERPROC, glAttachShader)                                               \
-    X(PFNGLLINKPROGRAMPROC, glLinkProgram)                                                 \
-    X(PFNGLGETPROGRAMIVPROC, glGetProgramiv)                                               \
-    X(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog)                                     \
-    X(PFNGLDELETEPROGRAMPROC, glDeleteProgram)                                             \
-    X(PFNGLUSEPROGRAMPROC, glUseProgram)                                                   \
-    X(PFNGLGETACTIVEUNIFORMPROC, glGetActiveUniform)                                       \
-    X(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation)                                   \
-    X(PFNGLUNIFORM1IPROC, glUniform1i)                                                     \
-    X(PFNGLGENTEXTURESPROC, glGenTextures)                                                 \
-    X(PFNGLDELETETEXTURESPROC, glDeleteTextures)                                           \
-    X(PFNGLBINDTEXTUREPROC, glBindTexture)                                                 \
-    X(PFNGLACTIVETEXTUREPROC, glActiveTexture)                                             \
-    X(PFNGLTEXIMAGE2DPROC, glTexImage2D)                                                   \
-    X(PFNGLTEXPARAMETERIPROC, glTexParameteri)                                             \
-    X(PFNGLPIXELSTOREIPROC, glPixelStorei)                                                 \
-    X(PFNGLGENBUFFERSPROC, glGenBuffers)                                                   \
-    X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers)                                             \
-    X(PFNGLBINDBUFFERPROC, glBindBuffer)                                                   \
-    X(PFNGLBINDBUFFERBASEPROC, glBindBufferBase)                                           \
-    X(PFNGLBUFFERDATAPROC, glBufferData)                                                   \
-    X(PFNGLGETBUFFERSUBDATAPROC, glGetBufferSubData)                                       \
-    X(PFNGLDISPATCHCOMPUTEPROC, glDispatchCompute)                                         \
-    X(PFNGLMEMORYBARRIERPROC, glMemoryBarrier)                                             \
-    X(PFNGLFINISHPROC, glFinish)
-
-struct Gl {
-#define SLUT_GL_MEMBER(type, name) type name = nullptr;
-    SLUT_GL_FUNCTIONS(SLUT_GL_MEMBER)
-#undef SLUT_GL_MEMBER
-};
-
-// One surfaceless EGL display and OpenGL 4.3 core context for the whole process.
-struct GpuContext {
-    bool ok = false;
-    std::string why_not; // when !ok
-    std::string renderer;
-    Gl gl;
-    EGLDisplay display = EGL_NO_DISPLAY;
-    EGLContext context = EGL_NO_CONTEXT;
-
-    GpuContext() {
-        const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-        if (!client || !std::strstr(client, "EGL_MESA_platform_surfaceless")) {
-            why_not = "EGL_MESA_platform_surfaceless is not available (install libegl-mesa0 and "
-                      "libgl1-mesa-dri)";
-            return;
-        }
-        auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-            eglGetProcAddress("eglGetPlatformDisplayEXT"));
-        if (!get_platform_display) {
-            why_not = "eglGetPlatformDisplayEXT is missing";
-            return;
-        }
-        display = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-        EGLint major = 0, minor = 0;
-        if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor)) {
-            why_not = "no surfaceless EGL display could be initialised (EGL error 0x" + hex(eglGetError()) +
-                      "; is libgl1-mesa-dri installed?)";
-            return;
-        }
-        if (!eglBindAPI(EGL_OPENGL_API)) {
-            why_not = "eglBindAPI(EGL_OPENGL_API) failed";
-            return;
-        }
-        const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 3,
-                                     EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                     EGL_NONE};
-        context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
-        if (context == EGL_NO_CONTEXT) {
-            why_not = "no OpenGL 4.3 core context (EGL error 0x" + hex(eglGetError()) + ")";
-            return;
-        }
-        if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
-            why_not = "eglMakeCurrent without a surface failed (EGL_KHR_surfaceless_context?)";
-            return;
-        }
-#define SLUT_GL_LOAD(type, name)                                                           \
-    gl.name = reinterpret_cast<type>(eglGetProcAddress(#name));                            \
-    if (!gl.name) {                                                                        \
-        why_not = "OpenGL entry point " #name " is missing";                               \
-        return;                                                                            \
-    }
-        SLUT_GL_FUNCTIONS(SLUT_GL_LOAD)
-#undef SLUT_GL_LOAD
-        renderer = std::string(reinterpret_cast<const char *>(gl.glGetString(GL_RENDERER))) + " | " +
-                   reinterpret_cast<const char *>(gl.glGetString(GL_VERSION));
-        ok = true;
-    }
-    ~GpuContext() {
-        if (display != EGL_NO_DISPLAY) {
-            eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-            if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
-            eglTerminate(display);
-        }
-    }
-    static std::string hex(EGLint e) {
-        char buf[16];
-        std::snprintf(buf, sizeof buf, "%04x", static_cast<unsigned>(e));
-        return buf;
-    }
-};
-
-GpuContext &gpu() {
-    static GpuContext context;
-    return context;
-}
-
-// Compiles and links one compute shader; "" on success, else the log.
-std::string build_program(const Gl &gl, const std::string &source, GLuint *program) {
-    GLuint shader = gl.glCreateShader(GL_COMPUTE_SHADER);
-    const char *text = source.c_str();
-    gl.glShaderSource(shader, 1, &text, nullptr);
-    gl.glCompileShader(shader);
-    GLint ok = 0;
-    gl.glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        std::vector<char> log(16384, '\0');
-        gl.glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
-        gl.glDeleteShader(shader);
-        return std::string("compile failed:\n") + log.data();
-    }
-    *program = gl.glCreateProgram();
-    gl.glAttachShader(*program, shader);
-    gl.glLinkProgram(*program);
-    gl.glDeleteShader(shader);
-    gl.glGetProgramiv(*program, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        std::vector<char> log(16384, '\0');
-        gl.glGetProgramInfoLog(*program, static_cast<GLsizei>(log.size()), nullptr, log.data());
-        gl.glDeleteProgram(*program);
-        return std::string("link failed:\n") + log.data();
-    }
-    return "";
-}
-
-// Runs a compute shader over n_items (64 per group): binding 0 a width x height R32F
-// texture with GL_LINEAR filtering and CLAMP_TO_EDGE (what the hardware-filter path needs;
-// the texelFetch path ignores both), 1 `inputs`, 2 the n_items results, 3 `params` (a
-// uniform block). The results, or an error in *error.
-std::vector<float> run_compute(const std::string &source, const std::vector<float> &texels, int width, int height,
-                               const std::vector<float> &inputs, size_t n_items, const void *params,
-                               size_t params_bytes, std::string *error) {
-    const Gl &gl = gpu().gl;
-    GLuint program = 0;
-    *error = build_program(gl, source, &program);
-    if (!error->empty()) return {};
-    gl.glUseProgram(program);
-    // Every sampler uniform (spirv-cross names its combined samplers itself) on unit 0.
-    GLint n_uniforms = 0;
-    gl.glGetProgramiv(program, GL_ACTIVE_UNIFORMS, &n_uniforms);
-    for (GLint i = 0; i < n_uniforms; ++i) {
-        char name[256];
-        GLint size = 0;
-        GLenum type = 0;
-        gl.glGetActiveUniform(program, static_cast<GLuint>(i), sizeof name, nullptr, &size, &type, name);
-        if (type == GL_SAMPLER_2D) gl.glUniform1i(gl.glGetUniformLocation(program, name), 0);
-    }
-    GLuint texture = 0;
-    gl.glGenTextures(1, &texture);
-    gl.glActiveTexture(GL_TEXTURE0);
-    gl.glBindTexture(GL_TEXTURE_2D, texture);
-    gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    gl.glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, width, height, 0, GL_RED, GL_FLOAT, texels.data());
-    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-
-    GLuint buffers[3];
-    gl.glGenBuffers(3, buffers);
-    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[0]);
-    gl.glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(inputs.size() * sizeof(float)), inputs.data(),
-                    GL_STATIC_DRAW);
-    gl.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers[0]);
-    std::vector<float> results(n_items, std::numeric_limits<float>::quiet_NaN());
-    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[1]);
-    gl.glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(results.size() * sizeof(float)),
-                    results.data(), GL_DYNAMIC_READ);
-    gl.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, buffers[1]);
-    gl.glBindBuffer(GL_UNIFORM_BUFFER, buffers[2]);
-    gl.glBufferData(GL_UNIFORM_BUFFER, static_cast<GLsizeiptr>(params_bytes), params, GL_STATIC_DRAW);
-    gl.glBindBufferBase(GL_UNIFORM_BUFFER, 3, buffers[2]);
-
-    gl.glDispatchCompute(static_cast<GLuint>((n_items + 63) / 64), 1, 1);
-    gl.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[1]);
-    gl.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(results.size() * sizeof(float)),
-                          results.data());
-    gl.glFinish();
-    const GLenum err = gl.glGetError();
-    if (err != GL_NO_ERROR) *error = "OpenGL error 0x" + GpuContext::hex(static_cast<EGLint>(err));
-    gl.glDeleteBuffers(3, buffers);
-    gl.glDeleteTextures(1, &texture);
-    gl.glUseProgram(0);
-    gl.glDeleteProgram(program);
-    return results;
-}
-
 // Every query through a compute shader built from glsl/hlsl_compute_source (or its
 // spirv-cross translation), on the test table.
 std::vector<float> run_on_gpu(const std::string &source, std::string *error) {
@@ -878,38 +521,7 @@ std::vector<float> run_on_gpu(const std::string &source, std::string *error) {
         int32_t w_count, n_queries, pad[2];
     } params{static_cast<float>(kUMax), static_cast<float>(kUScale), kCountU, static_cast<float>(kWMin),
              kCountW, static_cast<int32_t>(qs.size()), {0, 0}};
-    return run_compute(source, texels, kCountU, kCountW, packed, qs.size(), &params, sizeof params, error);
-}
-
-// The hardware filter's weight error: GL_LINEAR on a 2x1 ramp texture [0, 1] at texel
-// coordinate f between the two centres must return f; returns max |result - f| over 4096
-// fractions of a golden-ratio sequence (every mantissa bit in use): ~6e-8 with float
-// weights, up to 1/512 with 8-bit fixed-point weights; negative on error.
-double hardware_filter_weight_error() {
-    static const double measured = [] {
-        const std::string source = R"glsl(#version 430
-layout(local_size_x = 64) in;
-layout(binding = 0) uniform sampler2D ramp;
-layout(std430, binding = 1) readonly buffer Fractions { float f[]; };
-layout(std430, binding = 2) writeonly buffer Results { float r[]; };
-layout(std140, binding = 3) uniform Params { int n; };
-void main() {
-    int i = int(gl_GlobalInvocationID.x);
-    if (i < n) r[i] = textureLod(ramp, vec2((f[i] + 0.5) / 2.0, 0.5), 0.0).r;
-}
-)glsl";
-        const int n = 4096;
-        std::vector<float> f(n);
-        for (int i = 0; i < n; ++i) f[i] = static_cast<float>(std::fmod(0.5 + i * 0.6180339887498949, 1.0)); // all 24 bits used
-        const int32_t params[4] = {n, 0, 0, 0};
-        std::string error;
-        const std::vector<float> r = run_compute(source, {0.0f, 1.0f}, 2, 1, f, n, params, sizeof params, &error);
-        if (!error.empty()) return -1.0;
-        double worst = 0;
-        for (int i = 0; i < n; ++i) worst = std::max(worst, std::fabs(static_cast<double>(r[i]) - f[i]));
-        return worst;
-    }();
-    return measured;
+    return run_compute(source, texels, kCountU, kCountW, 0, packed, qs.size(), &params, sizeof params, error);
 }
 
 // The largest change of the stored ln Gs across one cell (u and w steps added): a filter
@@ -997,12 +609,11 @@ TEST(ShaderSources, ConstantsMatchTheCHeaders) {
         ASSERT_TRUE(std::regex_search(body, m, re)) << name << " is not defined in the shared body";
         EXPECT_EQ(std::stoi(m[1]), value) << name;
     }
-    EXPECT_EQ(SLUT_WARP_COUNT, 5) << "a new warp: add it to slut_warp_forward in the snippets";
     for (const std::string *text : {&glsl_snippet(), &hlsl_snippet()}) {
         for (const char *array : {"slut_gl16_x", "slut_gl16_w"}) {
-            const size_t at = text->find(std::string(array) + "[8] =");
+            const size_t at = text->find("SLUT_CONST_FLOAT8(" + std::string(array) + ",");
             ASSERT_NE(at, std::string::npos) << array;
-            const std::string list = text->substr(text->find_first_of("({", at + 12), 400);
+            const std::string list = text->substr(at + 30, 400);
             std::vector<double> values;
             const std::regex number("[0-9]+\\.[0-9]+");
             for (auto it = std::sregex_iterator(list.begin(), list.end(), number);
@@ -1143,7 +754,7 @@ TEST_F(GpuShaders, HlslMatchesTheCppSampler) {
         SLUT_SKIP_OR_FAIL("running the HLSL needs glslangValidator and spirv-cross (Debian: glslang-tools, spirv-cross)");
     for (bool hw : {false, true}) {
         std::string error;
-        const std::string glsl = hlsl_to_glsl(hw, &error);
+        const std::string glsl = hlsl_compute_to_glsl(hw ? "hw" : "fetch", hlsl_compute_source(hw), &error);
         ASSERT_EQ(error, "");
         const std::vector<float> got = run_on_gpu(glsl, &error);
         ASSERT_EQ(error, "");

@@ -8,6 +8,12 @@ step(${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/consumer" -B "${WORK_DIR}/build" "
 step(${CMAKE_COMMAND} --build "${WORK_DIR}/build")
 step("${WORK_DIR}/prefix/bin/scatterlut" generate --out "${WORK_DIR}/tables" --format bin --n-u 128 --n-w 64)
 step("${WORK_DIR}/build/consumer" "${WORK_DIR}/tables/airlight_F.slut")
+# The GPU snippets, generated at build time, are installed beside the library.
+foreach(snippet scatterlut_airlight.glsl scatterlut_airlight.hlsl scatterlut_nearlight.glsl scatterlut_nearlight.hlsl)
+  if(NOT EXISTS "${WORK_DIR}/prefix/share/scatterlut/shaders/${snippet}")
+    message(FATAL_ERROR "${snippet} is not installed in ${WORK_DIR}/prefix/share/scatterlut/shaders")
+  endif()
+endforeach()
 # pkg-config sees the same library.
 find_program(PKG_CONFIG pkg-config)
 if(PKG_CONFIG)

@@ -1,0 +1,657 @@
+// The near-light GPU snippets (scatterlut_nearlight.{glsl,hlsl}, generated at build time)
+// against the truth they must reproduce: the C++ runtime (scatterlut::NearLightTable::E
+// and ::radiance, near_light_radiance_thin / _distant; tables/src/nearlight.cpp, itself
+// tested against Boost.Math in test_nearlight_math.cpp and test_nearlight_table.cpp) on
+// the REAL default tables: `scatterlut generate` writes near_light_E3 (96 x 80 x 64) and
+// near_light_E4 (48 x 40 x 48 x 24) into the scratch directory, this test loads them,
+// uploads them as R32F 3-D textures (E4: the S layers stacked along the depth) and
+// compares, query by query, with the double C++ code fed the same float-rounded inputs
+// and the same float-rounded table:
+//   - E(T, g, r[, S]) inside each table's domain (points uniform in the warped unit
+//     coordinates, plus the axis ends and r = 0), and outside it, where the shader clamps
+//     to the edge texels: there the reference is scatterlut::sample (the C++ sampler's own
+//     clamp), since NearLightTable::E would integrate exactly;
+//   - radiance from geometry (random normal, eye and light directions, sigma_t, eta with
+//     and without Fresnel) wherever the C++ table covers the query, plus the zero limits
+//     (light below the plane, sigma_s = 0, I0 = 0, length 0);
+//   - the thin-medium and distant-light closed forms (no table).
+// Both languages compile with glslang; the GLSL runs on Mesa llvmpipe through surfaceless
+// EGL, the HLSL too (HLSL -> SPIR-V -> GLSL 4.30 by spirv-cross); both with and without
+// SLUT_NEARLIGHT_HARDWARE_FILTER.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "gpu_harness.hpp"
+#include "scatterlut/io.hpp"
+#include "scatterlut/nearlight.hpp"
+#include "scatterlut/sampler.hpp"
+#include "scatterlut/table.hpp"
+
+extern "C" {
+#include "slut_axes.h"
+}
+
+using namespace gpu_harness;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// ------------------------------------------------------------------------ the tables
+
+// A table as the GPU sees it: its values rounded to float (the texture), and the C++
+// NearLightTable on exactly those values (the reference).
+struct GpuTable {
+    scatterlut::Table rounded;
+    std::vector<float> texels;
+    std::unique_ptr<scatterlut::NearLightTable> cpp;
+    int layers() const { return rounded.axes.size() == 4 ? rounded.axes[3].map.count : 1; }
+};
+
+struct Tables {
+    std::string error; // non-empty when generation failed
+    GpuTable e3, e4;
+};
+
+GpuTable make_gpu_table(scatterlut::Table t) {
+    GpuTable g;
+    for (double &v : t.values) v = static_cast<float>(v);
+    g.texels.assign(t.values.begin(), t.values.end());
+    g.rounded = t;
+    g.cpp = std::make_unique<scatterlut::NearLightTable>(std::move(t));
+    return g;
+}
+
+// The default tables as the scatterlut executable writes them (what a user ships): from
+// $SLUT_NEARLIGHT_TABLES where CTest's fixture ShaderNearLightTables generated them once
+// per run, else generated here (~10 s on 2 CPU cores).
+const Tables &tables() {
+    static const Tables t = [] {
+        Tables out;
+        std::string dir;
+        if (const char *given = std::getenv("SLUT_NEARLIGHT_TABLES")) {
+            dir = given;
+        } else {
+            dir = scratch_dir() + "/tables";
+            const std::string command = gpu_harness::quoted(SLUT_BINARY) + " generate --format bin --n-u 16 --n-w 16 --out " + gpu_harness::quoted(dir);
+            std::string output;
+            if (run_command(command, &output) != 0) {
+                out.error = command + "\n" + output;
+                return out;
+            }
+        }
+        out.e3 = make_gpu_table(scatterlut::load_table(dir + "/near_light_E3.slut"));
+        out.e4 = make_gpu_table(scatterlut::load_table(dir + "/near_light_E4.slut"));
+        return out;
+    }();
+    return t;
+}
+
+// ---------------------------------------------------------------------- the queries
+
+// One GPU query: 20 floats. mode 0: E(T, g, r, S) [2..5]; modes 1-3: radiance from the
+// table / thin closed form / distant closed form of (sigma_s, sigma_a, I0 [2..4],
+// normal [5..7], eye_dir [8..10], light_rel [11..13], length [14], eta [15], fresnel [16]).
+enum Mode { kE = 0, kRadiance = 1, kThin = 2, kDistant = 3 };
+constexpr int kQueryFloats = 20;
+
+struct Query {
+    std::array<float, kQueryFloats> gpu{};
+    double reference = 0;
+    double ln_E = 0;   // ln of the table's E at the query (scales the tolerance)
+    double conditioning = 0; // 1/mu_l + 1/mu_e of a geometry query (scales the tolerance)
+    std::string label; // category for the statistics
+};
+
+double log_uniform(std::mt19937_64 &rng, double lo, double hi) {
+    return lo * std::pow(hi / lo, std::uniform_real_distribution<double>(0.0, 1.0)(rng));
+}
+
+std::array<double, 3> random_unit(std::mt19937_64 &rng) {
+    std::normal_distribution<double> n(0.0, 1.0);
+    for (;;) {
+        const std::array<double, 3> v = {n(rng), n(rng), n(rng)};
+        const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        if (len > 1e-3) return {v[0] / len, v[1] / len, v[2] / len};
+    }
+}
+
+// A unit vector at cosine mu to n (random azimuth).
+std::array<double, 3> at_cosine(std::mt19937_64 &rng, const std::array<double, 3> &n, double mu) {
+    std::array<double, 3> t;
+    do {
+        const std::array<double, 3> v = random_unit(rng);
+        const double d = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+        t = {v[0] - d * n[0], v[1] - d * n[1], v[2] - d * n[2]};
+    } while (t[0] * t[0] + t[1] * t[1] + t[2] * t[2] < 1e-6);
+    const double tl = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+    const double s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+    return {mu * n[0] + s * t[0] / tl, mu * n[1] + s * t[1] / tl, mu * n[2] + s * t[2] / tl};
+}
+
+// The float the GPU gets, and the double unit vector the C++ checks demand (|v| = 1 to
+// 1e-9): the float vector renormalised in double (a change of ~6e-8, inside the noise).
+std::array<double, 3> unit_of_floats(const float *f) {
+    const double len = std::sqrt(double(f[0]) * f[0] + double(f[1]) * f[1] + double(f[2]) * f[2]);
+    return {f[0] / len, f[1] / len, f[2] / len};
+}
+
+scatterlut::NearLightQuery cpp_query(const Query &q) {
+    scatterlut::NearLightQuery c;
+    c.sigma_s_per_m = q.gpu[2];
+    c.sigma_a_per_m = q.gpu[3];
+    c.intensity_W_per_sr = q.gpu[4];
+    const auto n = unit_of_floats(&q.gpu[5]), e = unit_of_floats(&q.gpu[8]);
+    for (int k = 0; k < 3; ++k) {
+        c.normal[k] = n[k];
+        c.eye_dir[k] = e[k];
+        c.light_rel_m[k] = q.gpu[11 + k];
+    }
+    c.length_m = std::isinf(q.gpu[14]) ? kInf : q.gpu[14];
+    c.eta = q.gpu[15];
+    c.fresnel = q.gpu[16] != 0.0f;
+    return c;
+}
+
+// E queries inside the table (unit coordinates uniform per axis, 10 % at an axis end,
+// r = 0 for 10 %) and outside it (one coordinate beyond its axis, clamped by the shader).
+void add_E_queries(const GpuTable &t, bool thick, std::mt19937_64 &rng, std::vector<Query> &out) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const size_t n_axes = t.rounded.axes.size();
+    for (int i = 0; i < 2500; ++i) {
+        const bool outside = i >= 2000;
+        double p[4] = {0, 0, 0, kInf};
+        for (size_t a = 0; a < n_axes; ++a) {
+            const slut_axis &m = t.rounded.axes[a].map;
+            const double r = unit(rng);
+            p[a] = slut_param_from_unit(&m, r < 0.05 ? 0.0 : r < 0.1 ? 1.0 : unit(rng));
+        }
+        if (unit(rng) < 0.1) p[2] = 0.0;
+        if (outside) {
+            const size_t a = static_cast<size_t>(i) % n_axes;
+            const slut_axis &m = t.rounded.axes[a].map;
+            if (a == 1) p[1] = -1.0 + (m.min + 1.0) * unit(rng);              // g below g_min
+            else p[a] = (i % 2 ? m.max * (1.0 + 3.0 * unit(rng)) : m.min * unit(rng)); // beyond an end
+            if (a == 2 && !(i % 2)) p[2] = m.max * (1.0 + unit(rng));          // r min is 0: beyond max
+        }
+        Query q;
+        q.gpu[0] = kE;
+        for (int k = 0; k < 4; ++k) q.gpu[2 + k] = static_cast<float>(p[k]);
+        const double T = q.gpu[2], g = q.gpu[3], r = q.gpu[4], S = thick ? kInf : q.gpu[5];
+        if (!outside) {
+            if (!t.cpp->covers(T, g, r, S)) continue; // float rounding stepped out of an end
+            q.reference = t.cpp->E(T, g, r, S);
+            q.ln_E = std::log(q.reference);
+            q.label = "E";
+        } else {
+            if (t.cpp->covers(T, g, r, S)) continue;
+            const double params[4] = {T, g, r, S};
+            q.reference = scatterlut::sample(t.rounded, params, 0); // the C++ clamp-to-edge
+            q.ln_E = std::log(q.reference);
+            q.label = "E_clamped";
+        }
+        out.push_back(q);
+    }
+}
+
+// Radiance queries: random normal, eye at mu_e in [0.05, 1], light at mu_l in [1e-4, 1]
+// (r from 1e-4 to 20) with T log-uniform over the table's T axis, sigma_t in [0.05, 50]/m,
+// albedo in [0.05, 1], eta = 1 or in [0.75, 1.6], Fresnel on half of the refracted ones;
+// S over the S axis (E4) or infinite (E3). Kept where the C++ table covers the point.
+void add_radiance_queries(const GpuTable &t, bool thick, std::mt19937_64 &rng, std::vector<Query> &out) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const slut_axis &aT = t.rounded.axes[0].map;
+    int made = 0;
+    for (int attempt = 0; attempt < 20000 && made < 1500; ++attempt) {
+        const auto n = random_unit(rng);
+        const auto eye = at_cosine(rng, n, 0.05 + 0.95 * unit(rng));
+        const auto ldir = at_cosine(rng, n, log_uniform(rng, 1e-4, 1.0));
+        const double mu_e = eye[0] * n[0] + eye[1] * n[1] + eye[2] * n[2];
+        const double mu_l = ldir[0] * n[0] + ldir[1] * n[1] + ldir[2] * n[2];
+        const double sigma_t = log_uniform(rng, 0.05, 50.0), albedo = 0.05 + 0.95 * unit(rng);
+        const double T = log_uniform(rng, std::max(aT.min, 1e-3), aT.max), l = T / sigma_t;
+        double length = kInf;
+        if (!thick) length = log_uniform(rng, t.rounded.axes[3].map.min, t.rounded.axes[3].map.max) / sigma_t;
+        const double r_eta = unit(rng);
+        const double eta = r_eta < 0.5 ? 1.0 : r_eta < 0.6 ? 0.75 + 0.25 * unit(rng) : 1.0 + 0.6 * unit(rng);
+        Query q;
+        q.gpu[0] = kRadiance;
+        q.gpu[2] = static_cast<float>(albedo * sigma_t);
+        q.gpu[3] = static_cast<float>((1.0 - albedo) * sigma_t);
+        q.gpu[4] = static_cast<float>(log_uniform(rng, 0.1, 1e3));
+        for (int k = 0; k < 3; ++k) {
+            q.gpu[5 + k] = static_cast<float>(n[k]);
+            q.gpu[8 + k] = static_cast<float>(eye[k]);
+            q.gpu[11 + k] = static_cast<float>(l * ldir[k]);
+        }
+        q.gpu[14] = static_cast<float>(length);
+        q.gpu[15] = static_cast<float>(eta);
+        q.gpu[16] = (eta != 1.0 && unit(rng) < 0.5) ? 1.0f : 0.0f;
+        q.conditioning = 1.0 / mu_l + 1.0 / mu_e;
+        const scatterlut::NearLightQuery c = cpp_query(q);
+        const scatterlut::NearLightParams p = scatterlut::near_light_params(c);
+        if (p.light_below || !t.cpp->covers(p.T, p.g, p.r, p.S)) continue;
+        q.reference = t.cpp->radiance(c);
+        q.ln_E = std::log(t.cpp->E(p.T, p.g, p.r, p.S));
+        q.label = "radiance";
+        out.push_back(q);
+        ++made;
+        // The same geometry through the closed forms (E3 pass only: no table involved).
+        if (thick || made % 2) {
+            Query thin = q, distant = q;
+            thin.gpu[0] = kThin;
+            thin.reference = scatterlut::near_light_radiance_thin(c);
+            thin.label = "thin";
+            distant.gpu[0] = kDistant;
+            distant.reference = scatterlut::near_light_radiance_distant(c);
+            distant.label = "distant";
+            if (thin.reference > 1e-30) out.push_back(thin); // thick: E_thin = 0 exactly
+            out.push_back(distant);
+        }
+    }
+    // Zero limits on the last radiance query: the light strictly below the plane
+    // (light_rel = -l n), sigma_s = 0, I0 = 0, length 0.
+    size_t last = out.size();
+    while (last > 0 && out[last - 1].gpu[0] != kRadiance) --last;
+    if (last == 0) return;
+    for (int k = 0; k < 4; ++k) {
+        Query z = out[last - 1];
+        if (k == 0) {
+            const float *v = &z.gpu[11];
+            const double l = std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
+            for (int c = 0; c < 3; ++c) z.gpu[11 + c] = static_cast<float>(-l * z.gpu[5 + c]);
+        }
+        if (k == 1) z.gpu[2] = 0.0f;
+        if (k == 2) z.gpu[4] = 0.0f;
+        if (k == 3) z.gpu[14] = 0.0f;
+        z.reference = t.cpp->radiance(cpp_query(z));
+        z.label = "zero";
+        out.push_back(z);
+    }
+}
+
+struct Run {
+    std::vector<Query> queries;
+    std::vector<double> reference;
+};
+
+const Run &queries(bool thick) {
+    static const auto make = [](bool th) {
+        Run run;
+        if (!tables().error.empty()) return run;
+        const GpuTable &t = th ? tables().e3 : tables().e4;
+        std::mt19937_64 rng(th ? 20261201 : 20261202);
+        add_E_queries(t, th, rng, run.queries);
+        add_radiance_queries(t, th, rng, run.queries);
+        for (const Query &q : run.queries) run.reference.push_back(q.reference);
+        return run;
+    };
+    static const Run e3 = make(true), e4 = make(false);
+    return thick ? e3 : e4;
+}
+
+// ------------------------------------------------------------------------- shaders
+
+// The compute shader evaluating one pass of queries. Bindings as in gpu_harness:
+// 0 the table, 1 the queries, 2 the results, 3 the parameters (std140: per axis
+// (min, max, scale, -) and (warp, count, -, -); the number of layers; the query count).
+std::string glsl_snippet() { return read_text(kShaderDir + "scatterlut_nearlight.glsl"); }
+std::string hlsl_snippet() { return read_text(kShaderDir + "scatterlut_nearlight.hlsl"); }
+
+// What each invocation evaluates, written once for both languages with the snippets'
+// own prelude macros (SLUT_FLOAT3, SLUT_TEX_ARG): the test wrapper cannot drift between
+// GLSL and HLSL either.
+const char *kTestBody = R"slsl(
+SlutAxis test_axis(int k) {
+    return slut_axis_make(axis_f[k].x, axis_f[k].y, axis_f[k].z, axis_i[k].x, axis_i[k].y);
+}
+float test_eval(int i) {
+    SlutNearLightTable t;
+    if (layers == 1) t = slut_near_light_table_e3(test_axis(0), test_axis(1), test_axis(2));
+    else t = slut_near_light_table_e4(test_axis(0), test_axis(1), test_axis(2), test_axis(3));
+    int b = 20 * i;
+    int mode = int(q[b]);
+    SLUT_FLOAT3 n = SLUT_FLOAT3(q[b + 5], q[b + 6], q[b + 7]);
+    SLUT_FLOAT3 e = SLUT_FLOAT3(q[b + 8], q[b + 9], q[b + 10]);
+    SLUT_FLOAT3 l = SLUT_FLOAT3(q[b + 11], q[b + 12], q[b + 13]);
+    bool fresnel = q[b + 16] != 0.0;
+    if (mode == 0) return slut_near_light_E(SLUT_TEX_ARG(slut_test_table), t, q[b + 2], q[b + 3], q[b + 4], q[b + 5]);
+    if (mode == 1)
+        return slut_near_light_radiance(SLUT_TEX_ARG(slut_test_table), t, q[b + 2], q[b + 3], q[b + 4], n, e, l,
+                                        q[b + 14], q[b + 15], fresnel);
+    if (mode == 2)
+        return slut_near_light_radiance_thin(q[b + 2], q[b + 3], q[b + 4], n, e, l, q[b + 14], q[b + 15], fresnel);
+    return slut_near_light_radiance_distant(q[b + 2], q[b + 3], q[b + 4], n, e, l, q[b + 14], q[b + 15], fresnel);
+}
+)slsl";
+
+std::string glsl_compute_source(bool hardware_filter) {
+    std::string s = "#version 430\n";
+    if (hardware_filter) s += "#define SLUT_NEARLIGHT_HARDWARE_FILTER\n";
+    s += R"glsl(
+layout(local_size_x = 64) in;
+layout(binding = 0) uniform sampler3D slut_test_table;
+layout(std430, binding = 1) readonly buffer SlutTestQueries { float q[]; };
+layout(std430, binding = 2) writeonly buffer SlutTestResults { float res[]; };
+layout(std140, binding = 3) uniform SlutTestParams {
+    vec4 axis_f[4]; ivec4 axis_i[4]; int layers; int n_queries;
+};
+)glsl";
+    s += glsl_snippet() + kTestBody;
+    s += R"glsl(
+void main() {
+    int i = int(gl_GlobalInvocationID.x);
+    if (i < n_queries) res[i] = test_eval(i);
+}
+)glsl";
+    return s;
+}
+
+std::string hlsl_compute_source(bool hardware_filter) {
+    std::string s;
+    if (hardware_filter) s += "#define SLUT_NEARLIGHT_HARDWARE_FILTER\n";
+    s += R"hlsl(
+[[vk::binding(0)]] Texture3D<float> slut_test_table;
+[[vk::binding(4)]] SamplerState slut_test_table_sampler;
+[[vk::binding(1)]] StructuredBuffer<float> q;
+[[vk::binding(2)]] RWStructuredBuffer<float> res;
+[[vk::binding(3)]] cbuffer SlutTestParams {
+    float4 axis_f[4]; int4 axis_i[4]; int layers; int n_queries;
+};
+)hlsl";
+    s += hlsl_snippet() + kTestBody;
+    s += R"hlsl(
+[numthreads(64, 1, 1)]
+void main(uint3 id : SV_DispatchThreadID) {
+    int i = int(id.x);
+    if (i < n_queries) res[i] = test_eval(i);
+}
+)hlsl";
+    return s;
+}
+
+// A fragment / pixel shader using both snippets together, as an engine would (compile
+// checks: the shared part must be included once without clashes).
+std::string glsl_fragment_source(bool es) {
+    const std::string version = es ? "#version 300 es\nprecision highp float;\nprecision highp sampler3D;\n" : "#version 330\n";
+    return version + "uniform sampler2D airlight_table;\nuniform sampler3D near_table;\n"
+           "uniform vec3 light_pos;\nuniform vec3 medium;\nin vec3 world_pos;\nin vec3 eye_pos;\n"
+           "in vec3 normal;\nout vec4 colour;\n" +
+           read_text(kShaderDir + "scatterlut_airlight.glsl") + glsl_snippet() + R"glsl(
+void main() {
+    SlutNearLightTable t = slut_near_light_table_e3(
+        slut_axis_make(1e-3, 20.0, 0.3, SLUT_WARP_LOG1P, 96), slut_axis_make(-0.99, 1.0, 0.0, SLUT_WARP_SQRT1P, 80),
+        slut_axis_make(0.0, 1e3, 1e-5, SLUT_WARP_LOG1P, 64));
+    float L = slut_near_light_radiance(near_table, t, medium.x, medium.y, medium.z, normal,
+                                       normalize(eye_pos - world_pos), light_pos - world_pos,
+                                       1e30, 1.33, true);
+    colour = vec4(vec3(L), 1.0);
+}
+)glsl";
+}
+
+std::string hlsl_pixel_source() {
+    return "Texture3D<float> near_table : register(t0);\nSamplerState near_table_sampler : register(s0);\n"
+           "cbuffer Slab : register(b0) { float3 light_pos; float3 medium; };\n" +
+           read_text(kShaderDir + "scatterlut_airlight.hlsl") + hlsl_snippet() + R"hlsl(
+float4 main(float3 world_pos : TEXCOORD0, float3 eye_pos : TEXCOORD1, float3 normal : NORMAL) : SV_Target {
+    SlutNearLightTable t = slut_near_light_table_e3(
+        slut_axis_make(1e-3, 20.0, 0.3, SLUT_WARP_LOG1P, 96), slut_axis_make(-0.99, 1.0, 0.0, SLUT_WARP_SQRT1P, 80),
+        slut_axis_make(0.0, 1e3, 1e-5, SLUT_WARP_LOG1P, 64));
+    float L = slut_near_light_radiance(near_table, near_table_sampler, t, medium.x, medium.y, medium.z,
+                                       normal, normalize(eye_pos - world_pos), light_pos - world_pos,
+                                       1e30, 1.33, true);
+    return float4(L, L, L, 1.0);
+}
+)hlsl";
+}
+
+// ---------------------------------------------------------------------- comparisons
+
+// Tolerances (relative, against the double C++ code on the same float-rounded table and
+// inputs; measured on Mesa llvmpipe, docs/SHADERS.md):
+//  - E: 1e-5 + 2e-7·|ln E| (measured max 9e-6). The shader interpolates the stored ln E
+//    in float: each texel position x·(n − 1) carries a few float ulps of its warp (log1p
+//    over ~11 units of T, ~18 of r): ~1e-6 texel, times |Δ ln E| per cell (up to ~8 across
+//    the r boundary layer); the interpolated ln E itself rounds to ~6e-8·|ln E|, and exp
+//    adds (3 + 2|ln E|) ulp.
+//  - radiance: the E tolerance, plus 1e-5 for T·H from the float closed form (the Cephes
+//    atan and a few divisions, ~1e-6), refraction and Fresnel (~1e-6), plus
+//    2e-7·(1/μ_l + 1/μ_e): the geometry's float dot products. μ_l = (light − O)·n/l of a
+//    light near the plane cancels: its absolute error ~1e-7 is relative 1e-7/μ_l, and E,
+//    T·H and the closed forms depend on r = μ_l/μ_e at most linearly (measured 3e-4 at
+//    μ_l = 4e-5). The C++ reference computes those dot products in double from the
+//    same float vectors, so this is the snippet's own float error, not a drift.
+//  - thin / distant closed forms: 1e-5 + the same 2e-7·(1/μ_l + 1/μ_e) (a handful of
+//    float operations on the same parameters, expm1 by its polynomial).
+//  - the hardware filter adds, per filtered axis, (its weight error + 2^-24·n)·|Δ ln E|
+//    per cell, times 1.5: the weights are the GPU's (measured on the running GPU by
+//    gpu_harness::hardware_filter_weight_error), and the filter receives the position as
+//    a normalised coordinate whose float ulp is 2^-24·n texels for an axis of n texels —
+//    along E4's stacked depth n = r count × S count = 1152: ~7e-5 texel.
+constexpr double kTolE = 1e-5, kTolPerLnE = 2e-7, kTolRadiance = 1e-5, kTolClosedForm = 1e-5,
+                 kTolPerConditioning = 2e-7;
+
+// The hardware filter's extra error on one table (see the tolerances above): per filtered
+// axis the largest |Δ ln E| across one cell times (weight error + 2^-24·texels).
+double hardware_filter_extra(const GpuTable &t, double weight_error) {
+    const auto &ax = t.rounded.axes;
+    const size_t n[3] = {static_cast<size_t>(ax[0].map.count), static_cast<size_t>(ax[1].map.count),
+                         static_cast<size_t>(ax[2].map.count) * t.layers()};
+    const size_t stride[3] = {1, n[0], n[0] * n[1]};
+    double jump[3] = {0, 0, 0};
+    for (size_t k = 0; k < n[2]; ++k)
+        for (size_t j = 0; j < n[1]; ++j)
+            for (size_t i = 0; i < n[0]; ++i) {
+                const size_t at = (k * n[1] + j) * n[0] + i, idx[3] = {i, j, k};
+                for (int a = 0; a < 3; ++a) {
+                    const bool last_r_of_layer = a == 2 && (k + 1) % static_cast<size_t>(ax[2].map.count) == 0;
+                    if (idx[a] + 1 < n[a] && !last_r_of_layer)
+                        jump[a] = std::max(jump[a], double{std::fabs(t.texels[at + stride[a]] - t.texels[at])});
+                }
+            }
+    double extra = 0;
+    for (int a = 0; a < 3; ++a) extra += jump[a] * (weight_error + std::ldexp(static_cast<double>(n[a]), -24));
+    return 1.5 * extra;
+}
+
+void expect_agreement(const std::vector<float> &got, bool thick, const std::string &run, double filter_extra,
+                      ::testing::Test *test) {
+    const Run &r = queries(thick);
+    ASSERT_EQ(got.size(), r.queries.size());
+    for (const std::string label : {"E", "E_clamped", "radiance", "thin", "distant", "zero"}) {
+        std::vector<size_t> idx;
+        for (size_t i = 0; i < r.queries.size(); ++i)
+            if (r.queries[i].label == label) idx.push_back(i);
+        if (idx.empty()) continue;
+        const auto tolerance = [&](size_t i) {
+            const Query &q = r.queries[i];
+            const double ln_e = std::fabs(q.ln_E);
+            const double geometry = kTolPerConditioning * q.conditioning;
+            if (label == "thin" || label == "distant") return kTolClosedForm + geometry;
+            if (label == "radiance") return kTolRadiance + geometry + kTolE + kTolPerLnE * ln_e + filter_extra;
+            return kTolE + kTolPerLnE * ln_e + filter_extra;
+        };
+        const Stats st = error_stats(got, r.reference, idx, tolerance);
+        std::printf("[ %s %s ] %-9s n=%zu  max %.3g  p99 %.3g  median %.3g  (worst: gpu %.9g, C++ %.9g)\n", run.c_str(),
+                    thick ? "E3" : "E4", label.c_str(), st.count, st.max, st.p99, st.median,
+                    static_cast<double>(got[st.worst]), r.reference[st.worst]);
+        if (label == "radiance" || label == "thin" || label == "distant") {
+            // The same over the well-conditioned geometries (mu_l, mu_e >= ~0.1).
+            std::vector<size_t> well;
+            for (size_t i : idx)
+                if (r.queries[i].conditioning <= 20.0) well.push_back(i);
+            const Stats sw = error_stats(got, r.reference, well, tolerance);
+            std::printf("[ %s %s ] %-9s n=%zu  max %.3g  p99 %.3g  median %.3g  where 1/mu_l + 1/mu_e <= 20\n",
+                        run.c_str(), thick ? "E3" : "E4", label.c_str(), sw.count, sw.max, sw.p99, sw.median);
+        }
+        const Query &w = r.queries[st.worst_ratio];
+        std::string inputs;
+        for (int k = 0; k < 17; ++k) inputs += std::to_string(w.gpu[k]) + " ";
+        EXPECT_LE(st.max_ratio, 1.0) << run << " " << label << ": query [" << inputs << "] gave " << got[st.worst_ratio]
+                                     << ", the C++ code " << w.reference << ": relative error "
+                                     << rel_err(got[st.worst_ratio], w.reference) << " > tolerance "
+                                     << tolerance(st.worst_ratio);
+        test->RecordProperty(run + (thick ? "_E3_" : "_E4_") + label + "_max_rel_err", std::to_string(st.max));
+    }
+}
+
+#if SLUT_HAVE_EGL
+std::vector<float> run_on_gpu(const std::string &source, bool thick, std::string *error) {
+    const GpuTable &t = thick ? tables().e3 : tables().e4;
+    const Run &r = queries(thick);
+    std::vector<float> packed;
+    for (const Query &q : r.queries) packed.insert(packed.end(), q.gpu.begin(), q.gpu.end());
+    struct Params {
+        float axis_f[4][4];
+        int32_t axis_i[4][4];
+        int32_t layers, n_queries, pad[2];
+    } params{};
+    for (size_t a = 0; a < t.rounded.axes.size(); ++a) {
+        const slut_axis &m = t.rounded.axes[a].map;
+        params.axis_f[a][0] = static_cast<float>(m.min);
+        params.axis_f[a][1] = static_cast<float>(m.max);
+        params.axis_f[a][2] = static_cast<float>(m.scale);
+        params.axis_i[a][0] = m.warp;
+        params.axis_i[a][1] = m.count;
+    }
+    params.layers = t.layers();
+    params.n_queries = static_cast<int32_t>(r.queries.size());
+    const auto &ax = t.rounded.axes;
+    return run_compute(source, t.texels, ax[0].map.count, ax[1].map.count, ax[2].map.count * t.layers(), packed,
+                       r.queries.size(), &params, sizeof params, error);
+}
+#endif
+
+} // namespace
+
+// The comparison is only as good as its queries: enough of each kind in both tables, and
+// the domain's far corners (r = 0, the axis ends, the refracted and Fresnel paths).
+TEST(NearLightShaderQueries, CoverTheDomainAndEveryPath) {
+    ASSERT_EQ(tables().error, "") << "generating the default tables failed";
+    for (bool thick : {true, false}) {
+        int count[6] = {0, 0, 0, 0, 0, 0}, r_zero = 0, refracted = 0, fresnel = 0;
+        for (const Query &q : queries(thick).queries) {
+            const std::string &l = q.label;
+            ++count[l == "E" ? 0 : l == "E_clamped" ? 1 : l == "radiance" ? 2 : l == "thin" ? 3 : l == "distant" ? 4 : 5];
+            r_zero += (l == "E" && q.gpu[4] == 0.0f);
+            refracted += (l == "radiance" && q.gpu[15] != 1.0f);
+            fresnel += (l == "radiance" && q.gpu[16] != 0.0f);
+        }
+        std::printf("%s: E %d, E clamped %d, radiance %d (refracted %d, Fresnel %d), thin %d, distant %d, zero %d, r = 0 %d\n",
+                    thick ? "E3" : "E4", count[0], count[1], count[2], refracted, fresnel, count[3], count[4], count[5], r_zero);
+        EXPECT_GE(count[0], 1500);
+        EXPECT_GE(count[1], 300);
+        EXPECT_GE(count[2], 1000);
+        EXPECT_GE(count[4], 300);
+        EXPECT_GE(count[5], 3);
+        EXPECT_GE(r_zero, 100);
+        EXPECT_GE(refracted, 300);
+        EXPECT_GE(fresnel, 100);
+        if (!thick) {
+            EXPECT_GE(count[3], 300); // the thin form is 0 for a thick medium
+        }
+    }
+}
+
+// Generated from one source: the GLSL and HLSL files agree outside their preludes, are
+// ASCII, and carry the kernels/ regions verbatim (the axis maps and the closed-form H).
+TEST(NearLightShaderSources, OneBodyFromTheCHeaders) {
+    const std::string g = shared_body(glsl_snippet()), h = shared_body(hlsl_snippet());
+    ASSERT_FALSE(g.empty()) << "SHARED BODY markers missing in scatterlut_nearlight.glsl";
+    EXPECT_TRUE(g == h) << "the GLSL and HLSL near-light snippets differ outside their preludes";
+    for (const std::string &text : {glsl_snippet(), hlsl_snippet()}) {
+        const auto it = std::find_if(text.begin(), text.end(), [](char c) { return static_cast<unsigned char>(c) > 127; });
+        EXPECT_EQ(it, text.end()) << "non-ASCII byte at offset " << (it - text.begin());
+    }
+    for (const char *function : {"SLUT_FN double slut_warp_forward(int warp, double p, double p_min, double scale)",
+                                 "SLUT_FN double slut_nl_H_scaled(double g, double S_over_T)",
+                                 "SLUT_FN double slut_nl_E_thin(double r, double S)"}) {
+        EXPECT_NE(g.find(function), std::string::npos) << function << " is not copied from kernels/";
+    }
+}
+
+TEST(NearLightShaderGlslang, GlslAndHlslCompile) {
+    if (kGlslang.empty()) SLUT_SKIP_OR_FAIL("glslangValidator was not found at configure time (Debian: glslang-tools)");
+    for (bool hw : {false, true}) {
+        SCOPED_TRACE(hw ? "SLUT_NEARLIGHT_HARDWARE_FILTER" : "texel-fetch path");
+        const std::string tag = hw ? "_hw" : "";
+        EXPECT_EQ(glslang("nl_compute" + tag + ".comp", glsl_compute_source(hw), ""), "");
+        EXPECT_EQ(glslang("nl_vk_compute" + tag + ".comp", glsl_compute_source(hw),
+                          "-V -o " + gpu_harness::quoted(scratch_dir() + "/nl_vk_compute" + tag + ".spv")),
+                  "");
+        EXPECT_EQ(glslang("nl_compute" + tag + ".hlsl", hlsl_compute_source(hw),
+                          "-D -V -e main -S comp -o " + gpu_harness::quoted(scratch_dir() + "/nl_compute_hlsl" + tag + ".spv")),
+                  "");
+    }
+    // Both snippets in one shader (the shared part once): GLSL 3.30, GLSL ES 3.00 and an
+    // HLSL pixel shader.
+    EXPECT_EQ(glslang("nl_fragment.frag", glsl_fragment_source(false), ""), "");
+    EXPECT_EQ(glslang("nl_fragment_es.frag", glsl_fragment_source(true), ""), "");
+    EXPECT_EQ(glslang("nl_pixel.hlsl", hlsl_pixel_source(),
+                      "-D -V -e main -S frag -o " + gpu_harness::quoted(scratch_dir() + "/nl_pixel.spv")),
+              "");
+}
+
+class NearLightGpu : public ::testing::Test {
+protected:
+    void SetUp() override {
+#if SLUT_HAVE_EGL
+        if (!gpu().ok) SLUT_SKIP_OR_FAIL("no GPU context: " + gpu().why_not);
+        ASSERT_EQ(tables().error, "") << "generating the default tables failed";
+        std::printf("[ renderer ] %s\n", gpu().renderer.c_str());
+#else
+        SLUT_SKIP_OR_FAIL("built without EGL/OpenGL headers and libraries (Debian: libegl-dev, libgl-dev)");
+#endif
+    }
+};
+
+TEST_F(NearLightGpu, GlslMatchesTheCppSampler) {
+#if SLUT_HAVE_EGL
+    for (bool thick : {true, false}) {
+        std::string error;
+        const std::vector<float> got = run_on_gpu(glsl_compute_source(false), thick, &error);
+        ASSERT_EQ(error, "");
+        expect_agreement(got, thick, "glsl", 0.0, this);
+    }
+#endif
+}
+
+TEST_F(NearLightGpu, GlslHardwareFilterAgreesToTheFilterPrecision) {
+#if SLUT_HAVE_EGL
+    const double weight_error = hardware_filter_weight_error();
+    ASSERT_GE(weight_error, 0.0) << "the ramp shader failed";
+    for (bool thick : {true, false}) {
+        const double extra = hardware_filter_extra(thick ? tables().e3 : tables().e4, weight_error);
+        std::printf("[ filter ] weight error %.3g: extra tolerance %.3g\n", weight_error, extra);
+        std::string error;
+        const std::vector<float> got = run_on_gpu(glsl_compute_source(true), thick, &error);
+        ASSERT_EQ(error, "");
+        expect_agreement(got, thick, "glsl_hw", extra, this);
+    }
+#endif
+}
+
+TEST_F(NearLightGpu, HlslMatchesTheCppSampler) {
+#if SLUT_HAVE_EGL
+    if (kGlslang.empty() || kSpirvCross.empty())
+        SLUT_SKIP_OR_FAIL("running the HLSL needs glslangValidator and spirv-cross (Debian: glslang-tools, spirv-cross)");
+    std::string error;
+    const std::string glsl = hlsl_compute_to_glsl("nl", hlsl_compute_source(false), &error);
+    ASSERT_EQ(error, "");
+    for (bool thick : {true, false}) {
+        const std::vector<float> got = run_on_gpu(glsl, thick, &error);
+        ASSERT_EQ(error, "");
+        expect_agreement(got, thick, "hlsl", 0.0, this);
+    }
+#endif
+}
