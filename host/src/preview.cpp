@@ -73,10 +73,7 @@ double nice_step(double x) {
 // which round values get room, so a log1p axis is labelled by decades and a linear one by
 // even steps, without a case per warp.
 
-struct Tick {
-    double pos; // 0 … 1 along the axis (unit coordinate or colour-bar fraction)
-    std::string label;
-};
+using Tick = PreviewTick;
 
 std::vector<Tick> place_ticks(double lo, double hi, const std::function<double(double)> &pos_of,
                               double length_px, const std::function<double(const std::string &)> &extent_px) {
@@ -295,9 +292,9 @@ Preview render_preview(const Table &t, const PreviewRequest &req) {
     // Labels first: they decide the margins.
     const Channel &ch = t.channels[p.channel];
     const bool log_channel = ch.encoding == Encoding::Log;
-    const std::vector<Tick> x_ticks = place_ticks(
+    std::vector<Tick> &x_ticks = p.x_ticks, &y_ticks = p.y_ticks, &bar_ticks = p.bar_ticks;
+    x_ticks = place_ticks(
         xm.min, xm.max, [&](double v) { return slut_unit_from_param(&xm, v); }, p.plot_w, text_w);
-    std::vector<Tick> y_ticks;
     if (p.y_axis >= 0) {
         const slut_axis &ym = t.axes[static_cast<size_t>(p.y_axis)].map;
         y_ticks = place_ticks(
@@ -305,7 +302,7 @@ Preview render_preview(const Table &t, const PreviewRequest &req) {
     }
     // The colour bar is linear in the stored value; a log channel is labelled with the
     // quantity exp(stored), so its ticks fall on round quantities.
-    const std::vector<Tick> bar_ticks =
+    bar_ticks =
         log_channel ? place_ticks(
                           std::exp(lo), std::exp(hi), [&](double q) { return (std::log(q) - lo) / (hi - lo); },
                           p.plot_h, text_h)

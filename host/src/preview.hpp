@@ -30,6 +30,11 @@ struct SliceAxis {
     int node;     // its node index, or -1 between nodes
 };
 
+struct PreviewTick {
+    double pos;        // 0 … 1 along the axis: unit coordinate, or fraction of the colour bar
+    std::string label; // in parameter units (axes) or quantity units (colour bar)
+};
+
 struct Preview {
     Raster image{1, 1, {0, 0, 0}};
     // Plot area in image pixels: column i shows unit coordinate (i + 0.5)/plot_w of the
@@ -41,6 +46,7 @@ struct Preview {
     std::vector<SliceAxis> slice;       // every axis not plotted
     double value_lo = 0, value_hi = 0;  // stored (encoded) values at the colour bar's ends
     std::string slice_text;             // the caption's slice line
+    std::vector<PreviewTick> x_ticks, y_ticks, bar_ticks;
 };
 
 // Throws std::invalid_argument for a request the table cannot satisfy (unknown channel or
