@@ -468,7 +468,7 @@ void check_exr_value(const ExrReader &r, const std::string &name, const std::str
                              std::to_string(len) + " bytes";
     for (const FixedSizeType &f : kFixedSizeTypes)
         if (type == f.name) {
-            if (len != f.bytes) r.fail(what + ", but a " + type + " value is " + std::to_string(f.bytes) + " bytes");
+            if (len != f.bytes) r.fail(what + ", but a value of type " + type + " is " + std::to_string(f.bytes) + " bytes");
             return;
         }
     if (type == "string") return; // read as exactly len bytes
