@@ -895,6 +895,71 @@ TEST(ExrHostile, TruncatedAndCorruptNeverCrash) {
     }
 }
 
+// The header checksum as docs/FORMAT.md §4.1 defines it, recomputed from the file's bytes
+// (attribute list: name\0 type\0 i32 size value …, \0) and written into
+// scatterlut.checksum.header, so that an edited header is judged by the reader's checks
+// rather than by the checksum.
+void refresh_exr_header_checksum(Bytes &b) {
+    struct Attr {
+        std::string name, type;
+        size_t value_at, size;
+    };
+    std::vector<Attr> attrs;
+    size_t pos = 8;
+    while (b[pos] != 0) {
+        Attr a;
+        a.name = reinterpret_cast<const char *>(&b[pos]);
+        pos += a.name.size() + 1;
+        a.type = reinterpret_cast<const char *>(&b[pos]);
+        pos += a.type.size() + 1;
+        a.size = get_u32(&b[pos]);
+        a.value_at = pos + 4;
+        pos = a.value_at + a.size;
+        attrs.push_back(a);
+    }
+    std::sort(attrs.begin(), attrs.end(), [](const Attr &x, const Attr &y) { return x.name < y.name; });
+    uint64_t h = 0xcbf29ce484222325ull;
+    size_t checksum_at = 0;
+    for (const Attr &a : attrs) {
+        if (a.name == "scatterlut.checksum.header") checksum_at = a.value_at;
+        if (a.name.rfind("scatterlut.", 0) != 0 || a.name.rfind("scatterlut.checksum.", 0) == 0) continue;
+        const Bytes size = le_u32(static_cast<uint32_t>(a.size));
+        h = doc_fnv1a64(reinterpret_cast<const uint8_t *>(a.name.c_str()), a.name.size() + 1, h);
+        h = doc_fnv1a64(reinterpret_cast<const uint8_t *>(a.type.c_str()), a.type.size() + 1, h);
+        h = doc_fnv1a64(size.data(), 4, h);
+        h = doc_fnv1a64(&b[a.value_at], a.size, h);
+    }
+    char hex[19];
+    std::snprintf(hex, sizeof hex, "0x%016llx", static_cast<unsigned long long>(h));
+    std::memcpy(&b[checksum_at], hex, 18);
+}
+
+// docs/FORMAT.md §2.7 for EXR: a file of a newer minor version with a scatterlut.*
+// attribute this reader does not know is read (the attribute skipped); the same attribute
+// in a file of this reader's own version is refused. The unknown attribute replaces
+// screenWindowWidth (same name length, type float), so no byte moves.
+TEST(Exr, NewerMinorWithUnknownAttributesIsRead) {
+    const Table t = make_table(2, Storage::F32);
+    const Bytes good = encode_exr(t);
+    Bytes b = good;
+    const size_t at = find_bytes(b, std::string("screenWindowWidth\0float\0", 24));
+    std::memcpy(&b[at], "scatterlut.zz_new", 17);
+    const std::string minor_attr("scatterlut.format_minor\0int\0", 28);
+    put_u32(&b[find_bytes(b, minor_attr) + minor_attr.size() + 4], kFormatMinor + 1);
+    refresh_exr_header_checksum(b);
+    const Table back = decode_exr(b.data(), b.size(), "newer.exr");
+    expect_same_metadata(t, back);
+    expect_values_rounded(t, back);
+
+    put_u32(&b[find_bytes(b, minor_attr) + minor_attr.size() + 4], kFormatMinor);
+    refresh_exr_header_checksum(b);
+    expect_exr_error(b, "unknown attribute 'scatterlut.zz_new' (format version 1.0 defines no such attribute)");
+    // And the helper is faithful: refreshing an unedited file changes nothing.
+    Bytes same = good;
+    refresh_exr_header_checksum(same);
+    EXPECT_EQ(same, good);
+}
+
 // Attribute sizes that disagree with the value's own structure. OpenEXR reads a value by
 // its type (an int is 4 bytes, a chlist runs to its empty name) and never compares with
 // the declared size, so such a file would put it out of step with the pre-scan; each is
