@@ -6,15 +6,14 @@
 //
 //   render_fog out/airlight_F.slut out/near_light_E3.slut out_dir
 //
-// Links only scatterlut::tables; the PNG writer below uses stored (uncompressed) deflate
-// blocks, so no zlib/libpng dependency.
+// Links only scatterlut::tables and the project's small internal PNG encoder
+// (tables/png, stored deflate blocks: no zlib/libpng dependency).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
-#include <fstream>
 #include <limits>
 #include <string>
 #include <vector>
@@ -22,6 +21,7 @@
 #include "scatterlut/airlight.hpp"
 #include "scatterlut/io.hpp"
 #include "scatterlut/nearlight.hpp"
+#include "png_writer.hpp"
 
 namespace {
 
@@ -155,68 +155,6 @@ std::vector<uint8_t> tone_map(const std::vector<double> &lin, double exposure) {
     return out;
 }
 
-// --- PNG: stored deflate blocks, CRC-32, Adler-32 -------------------------------------
-uint32_t crc32(const uint8_t *p, size_t n, uint32_t c = 0xffffffffu) {
-    static uint32_t table[256];
-    static bool init = false;
-    if (!init) {
-        for (uint32_t k = 0; k < 256; ++k) {
-            uint32_t v = k;
-            for (int b = 0; b < 8; ++b) v = (v & 1) ? 0xedb88320u ^ (v >> 1) : v >> 1;
-            table[k] = v;
-        }
-        init = true;
-    }
-    for (size_t k = 0; k < n; ++k) c = table[(c ^ p[k]) & 0xff] ^ (c >> 8);
-    return c;
-}
-
-void put32(std::vector<uint8_t> &v, uint32_t x) {
-    for (int s = 24; s >= 0; s -= 8) v.push_back(uint8_t(x >> s));
-}
-
-void chunk(std::vector<uint8_t> &png, const char *type, const std::vector<uint8_t> &data) {
-    put32(png, uint32_t(data.size()));
-    size_t start = png.size();
-    png.insert(png.end(), type, type + 4);
-    png.insert(png.end(), data.begin(), data.end());
-    put32(png, crc32(&png[start], png.size() - start) ^ 0xffffffffu);
-}
-
-bool write_png(const std::string &path, const std::vector<uint8_t> &rgb, int w, int h) {
-    std::vector<uint8_t> raw;
-    raw.reserve(size_t(h) * (1 + 3 * w));
-    for (int j = 0; j < h; ++j) {
-        raw.push_back(0); // filter: none
-        raw.insert(raw.end(), rgb.begin() + size_t(j) * 3 * w, rgb.begin() + size_t(j + 1) * 3 * w);
-    }
-    std::vector<uint8_t> z = {0x78, 0x01};
-    for (size_t pos = 0; pos < raw.size() || pos == 0;) {
-        size_t n = std::min<size_t>(65535, raw.size() - pos);
-        bool last = pos + n == raw.size();
-        z.push_back(last ? 1 : 0);
-        z.push_back(uint8_t(n)), z.push_back(uint8_t(n >> 8));
-        z.push_back(uint8_t(~n)), z.push_back(uint8_t(~n >> 8));
-        z.insert(z.end(), raw.begin() + pos, raw.begin() + pos + n);
-        pos += n;
-        if (last) break;
-    }
-    uint32_t a = 1, b = 0;
-    for (uint8_t c : raw) a = (a + c) % 65521, b = (b + a) % 65521;
-    put32(z, (b << 16) | a);
-
-    std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    std::vector<uint8_t> ihdr;
-    put32(ihdr, uint32_t(w)), put32(ihdr, uint32_t(h));
-    ihdr.insert(ihdr.end(), {8, 2, 0, 0, 0}); // 8-bit RGB
-    chunk(png, "IHDR", ihdr);
-    chunk(png, "IDAT", z);
-    chunk(png, "IEND", {});
-    std::ofstream f(path, std::ios::binary);
-    f.write(reinterpret_cast<const char *>(png.data()), std::streamsize(png.size()));
-    return bool(f);
-}
-
 double psnr(double mse, double peak) { return mse > 0 ? 10 * std::log10(peak * peak / mse) : kInf; }
 
 } // namespace
@@ -253,10 +191,9 @@ int main(int argc, char **argv) {
         const double exposure = 0.025 / std::max(v[v.size() / 2], 1e-30);
 
         auto t8 = tone_map(table_img, exposure), e8 = tone_map(exact_img, exposure);
-        if (!write_png(dir + "/table.png", t8, kWidth, kHeight) || !write_png(dir + "/exact.png", e8, kWidth, kHeight)) {
-            std::fprintf(stderr, "render_fog: cannot write PNGs into %s\n", dir.c_str());
-            return 2;
-        }
+        // Atomic writes; a failure (std::system_error naming the path) ends in the catch below.
+        scatterlut::write_file_atomic(dir + "/table.png", scatterlut::png::encode_rgb8(t8, kWidth, kHeight));
+        scatterlut::write_file_atomic(dir + "/exact.png", scatterlut::png::encode_rgb8(e8, kWidth, kHeight));
 
         double mse8 = 0, mse_lin = 0, max_rel = 0;
         size_t n_lin = 0, max8 = 0;

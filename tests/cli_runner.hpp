@@ -18,6 +18,7 @@ namespace slut_test {
 struct RunResult {
     int exit_code;
     std::string out;
+    std::string err; // stderr
 };
 
 // A per-process prefix for temporary files: ctest runs tests as parallel processes.
@@ -25,7 +26,8 @@ inline std::string temp_stem(const std::string &tag) {
     return testing::TempDir() + "/slut_" + tag + "_" + std::to_string(getpid());
 }
 
-// Runs SLUT_BINARY with `args` (shell syntax) and `input` on stdin; captures stdout.
+// Runs SLUT_BINARY with `args` (shell syntax) and `input` on stdin; captures stdout and
+// stderr.
 inline RunResult run_scatterlut(const std::string &args, const std::string &input = "") {
     static int calls = 0;
     const std::string stem = temp_stem("run") + "_" + std::to_string(++calls);
@@ -37,9 +39,12 @@ inline RunResult run_scatterlut(const std::string &args, const std::string &inpu
     size_t n;
     while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) out.append(buffer, n);
     const int status = pclose(pipe);
+    std::ifstream err_file(stem + ".err", std::ios::binary);
+    std::stringstream err;
+    err << err_file.rdbuf();
     std::filesystem::remove(stem + ".in");
     std::filesystem::remove(stem + ".err");
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out, err.str()};
 }
 
 inline std::vector<nlohmann::json> json_lines(const std::string &text) {

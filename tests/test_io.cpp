@@ -25,7 +25,12 @@
 #include <dirent.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
 
 #include "scatterlut/io.hpp"
 #include "scatterlut/table.hpp"
@@ -890,6 +895,149 @@ TEST(ExrHostile, TruncatedAndCorruptNeverCrash) {
     }
 }
 
+// The header checksum as docs/FORMAT.md §4.1 defines it, recomputed from the file's bytes
+// (attribute list: name\0 type\0 i32 size value …, \0) and written into
+// scatterlut.checksum.header, so that an edited header is judged by the reader's checks
+// rather than by the checksum.
+void refresh_exr_header_checksum(Bytes &b) {
+    struct Attr {
+        std::string name, type;
+        size_t value_at, size;
+    };
+    std::vector<Attr> attrs;
+    size_t pos = 8;
+    while (b[pos] != 0) {
+        Attr a;
+        a.name = reinterpret_cast<const char *>(&b[pos]);
+        pos += a.name.size() + 1;
+        a.type = reinterpret_cast<const char *>(&b[pos]);
+        pos += a.type.size() + 1;
+        a.size = get_u32(&b[pos]);
+        a.value_at = pos + 4;
+        pos = a.value_at + a.size;
+        attrs.push_back(a);
+    }
+    std::sort(attrs.begin(), attrs.end(), [](const Attr &x, const Attr &y) { return x.name < y.name; });
+    uint64_t h = 0xcbf29ce484222325ull;
+    size_t checksum_at = 0;
+    for (const Attr &a : attrs) {
+        if (a.name == "scatterlut.checksum.header") checksum_at = a.value_at;
+        if (a.name.rfind("scatterlut.", 0) != 0 || a.name.rfind("scatterlut.checksum.", 0) == 0) continue;
+        const Bytes size = le_u32(static_cast<uint32_t>(a.size));
+        h = doc_fnv1a64(reinterpret_cast<const uint8_t *>(a.name.c_str()), a.name.size() + 1, h);
+        h = doc_fnv1a64(reinterpret_cast<const uint8_t *>(a.type.c_str()), a.type.size() + 1, h);
+        h = doc_fnv1a64(size.data(), 4, h);
+        h = doc_fnv1a64(&b[a.value_at], a.size, h);
+    }
+    char hex[19];
+    std::snprintf(hex, sizeof hex, "0x%016llx", static_cast<unsigned long long>(h));
+    std::memcpy(&b[checksum_at], hex, 18);
+}
+
+// docs/FORMAT.md §2.7 for EXR: a file of a newer minor version with a scatterlut.*
+// attribute this reader does not know is read (the attribute skipped); the same attribute
+// in a file of this reader's own version is refused. The unknown attribute replaces
+// screenWindowWidth (same name length, type float), so no byte moves.
+TEST(Exr, NewerMinorWithUnknownAttributesIsRead) {
+    const Table t = make_table(2, Storage::F32);
+    const Bytes good = encode_exr(t);
+    Bytes b = good;
+    const size_t at = find_bytes(b, std::string("screenWindowWidth\0float\0", 24));
+    std::memcpy(&b[at], "scatterlut.zz_new", 17);
+    const std::string minor_attr("scatterlut.format_minor\0int\0", 28);
+    put_u32(&b[find_bytes(b, minor_attr) + minor_attr.size() + 4], kFormatMinor + 1);
+    refresh_exr_header_checksum(b);
+    const Table back = decode_exr(b.data(), b.size(), "newer.exr");
+    expect_same_metadata(t, back);
+    expect_values_rounded(t, back);
+
+    put_u32(&b[find_bytes(b, minor_attr) + minor_attr.size() + 4], kFormatMinor);
+    refresh_exr_header_checksum(b);
+    expect_exr_error(b, "unknown attribute 'scatterlut.zz_new' (format version 1.0 defines no such attribute)");
+    // And the helper is faithful: refreshing an unedited file changes nothing.
+    Bytes same = good;
+    refresh_exr_header_checksum(same);
+    EXPECT_EQ(same, good);
+}
+
+// Attribute sizes that disagree with the value's own structure. OpenEXR reads a value by
+// its type (an int is 4 bytes, a chlist runs to its empty name) and never compares with
+// the declared size, so such a file would put it out of step with the pre-scan; each is
+// refused before OpenEXR reads the header (docs/FORMAT.md §4.2, docs/FUZZING.md).
+TEST(ExrHostile, SizeDisagreeingWithTheValueIsRefused) {
+    const Bytes good = encode_exr(make_table(2, Storage::F16));
+    Bytes b = good;
+    const std::string axes_attr("scatterlut.axes\0int\0", 20);
+    put_u32(&b[find_bytes(b, axes_attr) + axes_attr.size()], 5);
+    expect_exr_error(b, "attribute 'scatterlut.axes' of type int declares 5 bytes, but a value of type int is 4 bytes");
+    b = good;
+    const size_t chlist_size_at = find_bytes(b, std::string("channels\0chlist\0", 16)) + 16;
+    put_u32(&b[chlist_size_at], get_u32(&b[chlist_size_at]) + 40);
+    expect_exr_error(b, "attribute 'channels' of type chlist declares");
+    expect_exr_error(b, "but its channel list ends after");
+    b = good;
+    const std::string extra_attr("scatterlut.extra\0stringvector\0", 30);
+    const size_t extra_at = find_bytes(b, extra_attr) + extra_attr.size();
+    put_u32(&b[extra_at + 4], 0x7fffffff); // the first string's length
+    expect_exr_error(b, "attribute 'scatterlut.extra' of type stringvector declares");
+    expect_exr_error(b, "a string at value byte 0 claims 2147483647 bytes");
+}
+
+// The fuzzer's finding tests/fuzz/known/exr-oom-1 (3041 bytes): its chlist claims 2327
+// bytes and holds 23; OpenEXR 3.1 read on into the declared value and met a "string"
+// whose size field was four bytes of text, 2.0 GB, and allocated it before failing.
+// Decoded here in a child process whose address space is capped at its current size
+// + 256 MiB: such an allocation fails there (std::bad_alloc, a different outcome), so
+// this test fails if any allocation sized by an unchecked field comes back.
+TEST(ExrHostile, FuzzFindingExrOomRefusedWithBoundedMemory) {
+    const Bytes file = read_all(std::string(SLUT_SOURCE_DIR) + "/tests/fuzz/known/exr-oom-1");
+    ASSERT_EQ(file.size(), 3041u);
+    int fds[2];
+    ASSERT_EQ(::pipe(fds), 0);
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        ::close(fds[0]);
+        auto report = [&](int code, const std::string &what) {
+            if (::write(fds[1], what.data(), what.size()) < 0) code = 9;
+            ::_exit(code);
+        };
+        std::ifstream status("/proc/self/status");
+        std::string line;
+        unsigned long long vm_kib = 0;
+        while (std::getline(status, line))
+            if (line.rfind("VmSize:", 0) == 0) vm_kib = std::strtoull(line.c_str() + 7, nullptr, 10);
+        if (vm_kib == 0) report(5, "no VmSize in /proc/self/status");
+        struct rlimit cap;
+        cap.rlim_cur = cap.rlim_max = (vm_kib << 10) + (256ull << 20);
+        if (::setrlimit(RLIMIT_AS, &cap) != 0) report(6, "setrlimit failed");
+        try {
+            decode_exr(file.data(), file.size(), "exr-oom-1");
+            report(2, "decoded without error");
+        } catch (const LoadError &e) {
+            report(0, e.what());
+        } catch (const std::bad_alloc &) {
+            report(3, "std::bad_alloc: an allocation beyond the 256 MiB cap");
+        } catch (const std::exception &e) {
+            report(4, std::string("not a LoadError: ") + e.what());
+        }
+    }
+    ::close(fds[1]);
+    std::string message;
+    char buf[512];
+    ssize_t n;
+    while ((n = ::read(fds[0], buf, sizeof buf)) > 0) message.append(buf, static_cast<size_t>(n));
+    ::close(fds[0]);
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFEXITED(status)) << "child died: signal " << WTERMSIG(status);
+    EXPECT_EQ(WEXITSTATUS(status), 0) << message;
+    EXPECT_NE(message.find("exr-oom-1: EXR header: attribute 'channels' of type chlist declares 2327 bytes, but its "
+                           "channel list ends after 23"),
+              std::string::npos)
+        << message;
+}
+
 #else
 
 TEST(Exr, BuiltWithoutOpenExr) {
@@ -900,3 +1048,84 @@ TEST(Exr, BuiltWithoutOpenExr) {
 }
 
 #endif
+
+// ====================================================================================
+// The command line on hostile files: `validate` and `inspect` exit 2 with the reason
+// ====================================================================================
+
+namespace {
+
+struct Corruption {
+    const char *name; // file name in the temp dir; the extension picks the format
+    Bytes bytes;
+    std::string message; // what the reason must say (after the file name)
+};
+
+std::vector<Corruption> corruptions() {
+    std::vector<Corruption> out;
+    const Bytes good = encode_binary(make_table(2, Storage::F32));
+    out.push_back({"truncated.slut", Bytes(good.begin(), good.begin() + static_cast<long>(good.size() / 2)),
+                   "truncated"});
+    Bytes b = good;
+    b[3] = 'X';
+    out.push_back({"magic.slut", b, "not a scatterlut binary table: expected magic 53 4c 55 54 54 42 4c 00"});
+    b = good;
+    b[b.size() - 5] ^= 0x10;
+    out.push_back({"flipped.slut", b, "payload checksum mismatch"});
+    File f = parse(good);
+    set_nested(f, kAxisTag, 0, 7, le_u32(1000000));
+    set_nested(f, kAxisTag, 1, 7, le_u32(1000000));
+    out.push_back({"huge.slut", build(f), "header claims 1000000000000 nodes, more than the limit of 2^31"});
+    f = parse(good);
+    set_nested(f, kAxisTag, 1, 7, le_u32(static_cast<uint32_t>(-5)));
+    out.push_back({"negative.slut", build(f), "axis 1 ('w'): count -5 is invalid"});
+    f = parse(good);
+    put_u32(&f.payload[4 * 13], 0x7fc00000u); // NaN, checksum consistent
+    out.push_back({"nan.slut", build(f), "payload value at node (6, 0), channel 'ln_G' is not finite (nan)"});
+    f = parse(good);
+    put_u32(&f.payload[0], 0xff800000u); // −inf
+    out.push_back({"inf.slut", build(f), "payload value at node (0, 0), channel 'F' is not finite (-inf)"});
+    b = good;
+    put_u32(&b[8], 2);
+    out.push_back({"major.slut", b, "format version 2.0 is newer than this reader (1.x); upgrade scatterlut"});
+#ifdef SCATTERLUT_HAS_OPENEXR
+    const Bytes exr = encode_exr(make_table(2, Storage::F16));
+    b = exr;
+    b[chlist_type_offset(b, "ln_G") - 2] = 'X';
+    out.push_back({"nochannel.exr", b, "missing channel 'ln_G' (expected HALF pixels for storage f16)"});
+    b = exr;
+    put_u32(&b[chlist_type_offset(b, "F")], 2);
+    out.push_back({"type.exr", b, "channel 'F' has pixel type FLOAT, expected HALF (storage f16)"});
+    out.push_back({"exr-oom-1.exr", read_all(std::string(SLUT_SOURCE_DIR) + "/tests/fuzz/known/exr-oom-1"),
+                   "EXR header: attribute 'channels' of type chlist declares 2327 bytes"});
+#endif
+    return out;
+}
+
+} // namespace
+
+// Each corruption of docs/FORMAT.md §2.6/§4.2 through the executable: exit 2 from
+// `validate` (text and --json) and `inspect`, the reason on stderr as "scatterlut: FILE:
+// reason", and validate's report naming the file UNREADABLE.
+TEST(CliHostile, ValidateAndInspectExit2WithTheReason) {
+    TempDir dir;
+    for (const Corruption &c : corruptions()) {
+        SCOPED_TRACE(c.name);
+        const std::string path = dir.path + "/" + c.name;
+        write_all(path, c.bytes);
+        const std::string reason = path + ": " + c.message;
+        const auto v = slut_test::run_scatterlut("validate " + path);
+        EXPECT_EQ(v.exit_code, 2) << v.out << v.err;
+        EXPECT_NE(v.err.find(reason), std::string::npos) << v.err;
+        EXPECT_NE(v.out.find(path + ": UNREADABLE"), std::string::npos) << v.out;
+        const auto j = slut_test::run_scatterlut("validate --json " + path);
+        EXPECT_EQ(j.exit_code, 2);
+        const nlohmann::json doc = nlohmann::json::parse(j.out);
+        EXPECT_EQ(doc.at("status"), "UNREADABLE");
+        EXPECT_NE(doc.at("message").get<std::string>().find(reason), std::string::npos) << j.out;
+        const auto i = slut_test::run_scatterlut("inspect " + path);
+        EXPECT_EQ(i.exit_code, 2) << i.out;
+        EXPECT_NE(i.err.find("scatterlut: " + reason), std::string::npos) << i.err;
+        EXPECT_TRUE(i.out.empty()) << i.out;
+    }
+}

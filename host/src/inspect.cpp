@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -14,6 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "png_writer.hpp"
+#include "preview.hpp"
 #include "scatterlut/io.hpp"
 #include "scatterlut/sampler.hpp"
 
@@ -23,6 +26,8 @@ namespace {
 struct InspectOptions {
     std::string file;
     bool json = false;
+    std::string preview_png; // "" = no picture
+    PreviewRequest preview;
 };
 
 struct Range {
@@ -65,7 +70,29 @@ nlohmann::json num(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlo
 // A negative declared accuracy means "not measured".
 nlohmann::json declared(double x) { return x >= 0 ? num(x) : nlohmann::json(nullptr); }
 
-void print_json(const InspectOptions &opt, const Table &t) {
+// Renders the picture, writes it atomically and describes it (for --json).
+nlohmann::json write_preview(const InspectOptions &opt, const Table &t) {
+    PreviewRequest req = opt.preview;
+    req.title = std::filesystem::path(opt.file).filename().string();
+    const Preview p = render_preview(t, req); // std::invalid_argument → main → exit 2
+    write_file_atomic(opt.preview_png, png::encode_rgb8(p.image.rgb, p.image.width, p.image.height));
+    nlohmann::json slice = nlohmann::json::array();
+    for (const SliceAxis &s : p.slice)
+        slice.push_back({{"axis", t.axes[s.axis].name}, {"value", s.param},
+                         {"node", s.node >= 0 ? nlohmann::json(s.node) : nlohmann::json(nullptr)}});
+    return {{"file", opt.preview_png},
+            {"width", p.image.width},
+            {"height", p.image.height},
+            {"channel", t.channels[p.channel].name},
+            {"x_axis", t.axes[p.x_axis].name},
+            {"y_axis", p.y_axis >= 0 ? nlohmann::json(t.axes[static_cast<size_t>(p.y_axis)].name) : nlohmann::json(nullptr)},
+            {"slice", slice},
+            {"slice_text", p.slice_text},
+            {"plot", {{"x", p.plot_x}, {"y", p.plot_y}, {"width", p.plot_w}, {"height", p.plot_h}}},
+            {"stored_value_range", {p.value_lo, p.value_hi}}};
+}
+
+void print_json(const InspectOptions &opt, const Table &t, const nlohmann::json &preview) {
     nlohmann::json j;
     j["file"] = opt.file;
     j["format_version"] = file_format_version(opt.file);
@@ -97,10 +124,11 @@ void print_json(const InspectOptions &opt, const Table &t) {
     j["provenance"] = {{"generator_version", p.generator_version}, {"command_line", p.command_line},
                        {"device", p.device}, {"created_by", p.created_by}, {"scene_bytes", p.scene.size()}};
     j["extra"] = t.extra;
+    if (!preview.is_null()) j["preview"] = preview;
     std::cout << j.dump() << "\n";
 }
 
-void print_text(const InspectOptions &opt, const Table &t) {
+void print_text(const InspectOptions &opt, const Table &t, const nlohmann::json &preview) {
     std::printf("%s\n", opt.file.c_str());
     std::printf("  format version  %s, read by a %u.%u reader\n", file_format_version(opt.file).c_str(), kFormatMajor,
                 kFormatMinor);
@@ -128,12 +156,21 @@ void print_text(const InspectOptions &opt, const Table &t) {
     std::printf("    device        %s\n", p.device.c_str());
     std::printf("    scene         %s\n", p.scene.empty() ? "(none)" : (std::to_string(p.scene.size()) + " bytes").c_str());
     for (const auto &[k, v] : t.extra) std::printf("    %s = %s\n", k.c_str(), v.c_str());
+    if (!preview.is_null())
+        std::printf("  preview         %s (%d x %d px): channel %s over %s, %s\n", opt.preview_png.c_str(),
+                    preview["width"].get<int>(), preview["height"].get<int>(),
+                    preview["channel"].get<std::string>().c_str(),
+                    (preview["x_axis"].get<std::string>() +
+                     (preview["y_axis"].is_null() ? "" : " x " + preview["y_axis"].get<std::string>()))
+                        .c_str(),
+                    preview["slice_text"].get<std::string>().c_str());
 }
 
 int run_inspect(const InspectOptions &opt) {
     const Table t = load_table(opt.file); // LoadError → main → exit 2
-    if (opt.json) print_json(opt, t);
-    else print_text(opt, t);
+    const nlohmann::json preview = opt.preview_png.empty() ? nlohmann::json() : write_preview(opt, t);
+    if (opt.json) print_json(opt, t, preview);
+    else print_text(opt, t, preview);
     return 0;
 }
 
@@ -144,6 +181,17 @@ void setup_inspect(CLI::App &app, int &exit_code) {
     auto *cmd = app.add_subcommand("inspect", "Print a table file's metadata, axes, channels, accuracy and provenance");
     cmd->add_option("file", opt->file, "Table file (.slut or .exr)")->required();
     cmd->add_flag("--json", opt->json, "One JSON object on stdout");
+    auto *png = cmd->add_option("--preview", opt->preview_png,
+                                "Write a false-colour PNG of one channel over two axes (a 2-D table or a slice)");
+    cmd->add_option("--channel", opt->preview.channel, "Channel to show (default: the first)")->needs(png);
+    cmd->add_option("--axes", opt->preview.plot_axes, "Axes to plot as X,Y by name (default: axes 0 and 1)")
+        ->delimiter(',')
+        ->expected(1, 2)
+        ->needs(png);
+    cmd->add_option("--slice", opt->preview.slice,
+                    "Where to cut the other axes: NAME=VALUE (parameter units) or NAME=#NODE, comma-separated; "
+                    "default: each at its middle node")
+        ->needs(png);
     cmd->callback([opt, &exit_code] { exit_code = run_inspect(*opt); });
 }
 
