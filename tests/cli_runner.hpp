@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -25,8 +26,9 @@ inline std::string temp_stem(const std::string &tag) {
     return testing::TempDir() + "/slut_" + tag + "_" + std::to_string(getpid());
 }
 
-// Runs SLUT_BINARY with `args` (shell syntax) and `input` on stdin; captures stdout.
-inline RunResult run_scatterlut(const std::string &args, const std::string &input = "") {
+// Runs SLUT_BINARY with `args` (shell syntax) and `input` on stdin; captures stdout (and
+// stderr after it with with_stderr).
+inline RunResult run_scatterlut(const std::string &args, const std::string &input = "", bool with_stderr = false) {
     static int calls = 0;
     const std::string stem = temp_stem("run") + "_" + std::to_string(++calls);
     std::ofstream(stem + ".in") << input;
@@ -37,6 +39,10 @@ inline RunResult run_scatterlut(const std::string &args, const std::string &inpu
     size_t n;
     while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) out.append(buffer, n);
     const int status = pclose(pipe);
+    if (with_stderr) {
+        std::ifstream err(stem + ".err");
+        out.append(std::istreambuf_iterator<char>(err), std::istreambuf_iterator<char>());
+    }
     std::filesystem::remove(stem + ".in");
     std::filesystem::remove(stem + ".err");
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};

@@ -39,7 +39,7 @@ public:
             if (ok) continue;
             std::string list;
             for (const char *k : known) list += (list.empty() ? "" : ", ") + std::string(k);
-            fail(key.source(), join(path, std::string(key.str())), "unknown key; expected one of " + list);
+            fail(key.source(), join(path, std::string(key.str())), "expected one of " + list + " (unknown key)");
         }
     }
 
@@ -55,7 +55,7 @@ public:
                   double lo, bool lo_open, double hi, const std::string &expect) const {
         const toml::node *n = t.get(key);
         if (!n) {
-            if (required) fail(t.source(), join(path, key), "missing; expected " + expect);
+            if (required) fail(t.source(), join(path, key), "expected " + expect + " (missing)");
             return fallback;
         }
         return number_value(*n, join(path, key), lo, lo_open, hi, expect);
@@ -74,7 +74,7 @@ public:
                        const std::string &fallback, std::initializer_list<const char *> allowed = {}) const {
         const toml::node *n = t.get(key);
         if (!n) {
-            if (required) fail(t.source(), join(path, key), "missing; expected a string");
+            if (required) fail(t.source(), join(path, key), "expected a string (missing)");
             return fallback;
         }
         if (!n->is_string()) fail(n->source(), join(path, key), "expected a string, got " + type_name(*n));
@@ -94,7 +94,7 @@ public:
     bool boolean(const toml::table &t, const char *key, const std::string &path, bool required, bool fallback) const {
         const toml::node *n = t.get(key);
         if (!n) {
-            if (required) fail(t.source(), join(path, key), "missing; expected true or false");
+            if (required) fail(t.source(), join(path, key), "expected true or false (missing)");
             return fallback;
         }
         if (!n->is_boolean()) fail(n->source(), join(path, key), "expected true or false, got " + type_name(*n));
@@ -159,11 +159,11 @@ SceneMedium read_medium(const Reader &rd, const toml::table &t, const std::strin
     if (m.viewer_inside && (m.thick || m.has_thickness)) {
         const char *key = m.has_thickness ? "thickness_m" : "thick";
         rd.fail(t.get(key)->source(), Reader::join(path, key),
-                "applies only to media seen from outside; expected viewer_inside = false or no such key");
+                "expected no such key: it applies only to media seen from outside (viewer_inside = false)");
     }
     if (!m.viewer_inside && !m.thick && !m.has_thickness)
         rd.fail(t.source(), Reader::join(path, "thickness_m"),
-                "missing; a medium seen from outside needs thick = true and/or thickness_m = [min, max]");
+                "expected thick = true and/or thickness_m = [min, max] for a medium seen from outside (missing)");
     return m;
 }
 
@@ -177,7 +177,7 @@ SceneLight read_light(const Reader &rd, const toml::table &t, const std::string 
         l.intensity_W_per_sr =
             rd.number(t, "intensity_W_per_sr", path, true, 0, 0.0, true, HUGE_VAL, "a finite number > 0 (W/sr)");
         const toml::node *d = t.get("distance_m");
-        if (!d) rd.fail(t.source(), Reader::join(path, "distance_m"), "missing; expected [min, max] in m");
+        if (!d) rd.fail(t.source(), Reader::join(path, "distance_m"), "expected [min, max] in m (missing)");
         l.distance_m = rd.range(*d, Reader::join(path, "distance_m"));
     } else {
         rd.only_keys(t, path, {"name", "type", "irradiance_W_per_m2", "media"});
