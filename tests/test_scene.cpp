@@ -118,6 +118,48 @@ TEST(SceneGenerate, ExamplesValidateAtThePredictedError) {
     }
 }
 
+// A target the size bound cannot reach: the plan says UNREACHABLE with the error it did
+// reach, generate still writes that table (declaring its measured accuracy, which validate
+// confirms), flags it in the metadata and warns. 1e-4 on E with 0.3 MiB: the thick table at
+// 48×40×32 measures ~1e-2 (the candle plan above), and 0.3 MiB allows only ~1.25× the nodes.
+TEST(SceneGenerate, UnreachableTargetIsReportedHonestly) {
+    const std::string base = slut_test::temp_stem("unreachable");
+    std::ofstream(base + ".toml") << R"([accuracy]
+relative_error = 1e-4
+max_table_MiB = 0.3
+[[medium]]
+name = "wax"
+sigma_s_per_m = 300
+sigma_a_per_m = 3
+viewer_inside = false
+thick = true
+[[light]]
+name = "flame"
+type = "point"
+intensity_W_per_sr = 0.1
+distance_m = [0.005, 0.03]
+)";
+    const nlohmann::json plan = plan_json("--scene " + base + ".toml");
+    ASSERT_EQ(plan.at("tables").size(), 1u);
+    const auto &t = plan["tables"][0];
+    EXPECT_FALSE(t.at("reached").get<bool>());
+    EXPECT_NE(t.at("verdict").get<std::string>().find("UNREACHABLE"), std::string::npos) << t["verdict"];
+    EXPECT_GT(t.at("predicted_max_rel").get<double>(), 1e-4);
+    EXPECT_LE(t.at("bytes").get<double>(), 0.3 * 1024 * 1024);
+
+    const RunResult gen = slut_test::run_scatterlut("generate --scene " + base + ".toml --out " + base + "_out --format bin", "", true);
+    EXPECT_EQ(gen.exit_code, 0) << gen.out;
+    EXPECT_NE(gen.out.find("warning: near_light_E3: UNREACHABLE"), std::string::npos) << gen.out;
+    const std::string file = base + "_out/near_light_E3.slut";
+    const scatterlut::Table table = scatterlut::load_table(file);
+    EXPECT_EQ(table.extra.at("plan.reached"), "false");
+    EXPECT_GT(table.accuracy.sampling_max_rel, 1e-4); // the error it reached, not the target
+    const RunResult v = slut_test::run_scatterlut("validate " + file);
+    EXPECT_EQ(v.exit_code, 0) << v.out;
+    std::filesystem::remove_all(base + "_out");
+    std::filesystem::remove(base + ".toml");
+}
+
 // ------------------------------------------------------------------ malformed scenes
 // Each bad scene: exit 2, a message "FILE:LINE:COL: key '…': expected …" naming the line of
 // the offending value and its key, and nothing written (the output directory unchanged).

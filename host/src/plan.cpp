@@ -221,7 +221,10 @@ void resolve_table(PlannedTable &t, const ScenePlan &plan, Device &device, const
         }
         if (k > 0) {
             const PlanTrial &prev = t.trials[static_cast<size_t>(k - 1)];
-            if (trial.bytes > prev.bytes && err > 0.9 * prev.sampling_max_rel) {
+            // A real refinement (≥ 1.5× the nodes) that did not reduce the error: a floor
+            // (storage rounding, the parametrization) that more nodes do not lower.
+            if (static_cast<double>(trial.bytes) >= 1.5 * static_cast<double>(prev.bytes) &&
+                err > 0.9 * prev.sampling_max_rel) {
                 stop = "the error stopped falling with resolution (" + fmt("%.3g", prev.sampling_max_rel) + " -> " +
                        fmt("%.3g", err) + ")";
                 break;

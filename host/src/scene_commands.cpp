@@ -98,7 +98,7 @@ void print_text(const ScenePlan &plan) {
                         r.need.c_str());
         for (const auto &a : t.table.axes) std::printf("  axis %s\n", axis_domain(a).c_str());
         for (const auto &n : t.domain_notes) std::printf("  (%s)\n", n.c_str());
-        std::printf("  target on the table's quantity: %.3g (%s)\n", t.target_rel,
+        std::printf("  target on the table's quantity: %.3g (%s, the strictest of the media asking)\n", t.target_rel,
                     t.kind == kKindAirlightF ? "a third of the radiance error: the airlight is a difference of two samples"
                                              : "the radiance error: L = sigma_s p I0 sigma_t H E, H exact");
         for (size_t i = 0; i < t.trials.size(); ++i) {
@@ -147,7 +147,10 @@ nlohmann::json to_json(const ScenePlan &plan) {
         e["reached"] = t.reached;
         e["fixed_resolution"] = t.fixed_resolution;
         e["verdict"] = t.verdict;
-        e["seconds"] = c.seconds;
+        e["seconds"] = c.seconds; // the chosen trial alone
+        double search = 0;
+        for (const PlanTrial &tr : t.trials) search += tr.seconds;
+        e["estimated_seconds"] = search; // what generate spends on this table (it repeats the search)
         json trials = json::array();
         for (const PlanTrial &tr : t.trials)
             trials.push_back({{"counts", tr.counts}, {"bytes", tr.bytes}, {"sampling_max_rel", tr.sampling_max_rel},
