@@ -11,13 +11,21 @@
 #include <string>
 #include <vector>
 
+#include <random>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
 #include "plan.hpp"
 #include "scene.hpp"
+#include "scatterlut/airlight.hpp"
 #include "scatterlut/io.hpp"
+#include "scatterlut/nearlight.hpp"
+
+extern "C" {
+#include "slut_nearlight.h"
+}
 
 namespace {
 
@@ -158,6 +166,67 @@ distance_m = [0.005, 0.03]
     EXPECT_EQ(v.exit_code, 0) << v.out;
     std::filesystem::remove_all(base + "_out");
     std::filesystem::remove(base + ".toml");
+}
+
+// The claim behind the planner's targets, in physical units: at random geometries inside a
+// scene's ranges the generated tables give radiance within the scene's accepted relative
+// error of exact quadrature (airlight_radiance_exact / near_light_radiance_exact, ~1e-13).
+// Airlight: the F table holds a third of the target, which bounds the difference of its two
+// samples (docs/SCENES.md); near light: E's error is the radiance's, where E ≥ 1e-6 (the
+// domain every near-light accuracy figure refers to).
+TEST(SceneRadiance, TablesMeetTheScenesRadianceError) {
+    const std::string dir = slut_test::temp_stem("scene_radiance");
+    for (const char *f : {"fog_street.toml", "candle_wax.toml"}) {
+        const RunResult gen = slut_test::run_scatterlut("generate --scene " + kScenes + f + " --out " + dir + " --format bin");
+        ASSERT_EQ(gen.exit_code, 0) << gen.out;
+    }
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    auto log_uniform = [&](double lo, double hi) { return lo * std::pow(hi / lo, unit(rng)); };
+    const double pi = 3.14159265358979323846;
+
+    // fog_street.toml: fog σ_s 0.05, σ_a 0.005 /m, lamps 2–80 m from the viewer, 0.5 %.
+    const scatterlut::AirlightTable fog(scatterlut::load_table(dir + "/airlight_F.slut"));
+    double worst_fog = 0;
+    for (int k = 0; k < 3000; ++k) {
+        scatterlut::AirlightQuery q{0.05, 0.005, 300.0, log_uniform(2, 80), pi * unit(rng),
+                                    k % 3 == 0 ? HUGE_VAL : log_uniform(0.1, 300)};
+        const double exact = scatterlut::airlight_radiance_exact(q);
+        if (!(exact > 0) || !std::isfinite(exact)) continue;
+        worst_fog = std::max(worst_fog, std::fabs(fog.radiance(q) - exact) / exact);
+    }
+    EXPECT_LE(worst_fog, 0.005);
+
+    // candle_wax.toml: paraffin σ_s 300, σ_a 3 /m, thick, flame 5–30 mm from the lit point,
+    // view angle ≤ 75°, light anywhere above the surface; 2 %.
+    const scatterlut::NearLightTable wax(scatterlut::load_table(dir + "/near_light_E3.slut"));
+    double worst_wax = 0;
+    int kept = 0;
+    for (int k = 0; k < 3000; ++k) {
+        scatterlut::NearLightQuery q;
+        q.sigma_s_per_m = 300;
+        q.sigma_a_per_m = 3;
+        q.intensity_W_per_sr = 0.08;
+        const double te = 75.0 * pi / 180.0 * unit(rng), tl = 0.5 * pi * unit(rng), phi = 2 * pi * unit(rng);
+        const double l = log_uniform(0.005, 0.03);
+        q.eye_dir[0] = std::sin(te);
+        q.eye_dir[1] = 0;
+        q.eye_dir[2] = std::cos(te);
+        q.light_rel_m[0] = l * std::sin(tl) * std::cos(phi);
+        q.light_rel_m[1] = l * std::sin(tl) * std::sin(phi);
+        q.light_rel_m[2] = l * std::cos(tl);
+        q.length_m = HUGE_VAL;
+        const scatterlut::NearLightParams p = scatterlut::near_light_params(q);
+        if (p.light_below || slut_nl_E(p.T, p.g, p.r, p.S) < 1e-6) continue;
+        const double exact = scatterlut::near_light_radiance_exact(q);
+        worst_wax = std::max(worst_wax, std::fabs(wax.radiance(q) - exact) / exact);
+        ++kept;
+    }
+    EXPECT_GT(kept, 2000);
+    EXPECT_LE(worst_wax, 0.02);
+    std::printf("radiance max rel: fog street %.3g (accepts 0.005), candle wax %.3g over %d points (accepts 0.02)\n",
+                worst_fog, worst_wax, kept);
+    std::filesystem::remove_all(dir);
 }
 
 // ------------------------------------------------------------------ malformed scenes
