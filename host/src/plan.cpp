@@ -187,6 +187,7 @@ void resolve_table(PlannedTable &t, const ScenePlan &plan, Device &device, const
         trial.sampling_max_rel = table.accuracy.sampling_max_rel;
         trial.sampling_p99_rel = table.accuracy.sampling_p99_rel;
         trial.integration_max_rel = table.accuracy.integration_max_rel;
+        trial.storage_max_rel = table.accuracy.storage_max_rel;
         trial.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         t.trials.push_back(trial);
         if (t.chosen < 0 || better(trial, t.trials[static_cast<size_t>(t.chosen)])) {
@@ -226,7 +227,7 @@ void resolve_table(PlannedTable &t, const ScenePlan &plan, Device &device, const
             if (static_cast<double>(trial.bytes) >= 1.5 * static_cast<double>(prev.bytes) &&
                 err > 0.9 * prev.sampling_max_rel) {
                 stop = "the error stopped falling with resolution (" + fmt("%.3g", prev.sampling_max_rel) + " -> " +
-                       fmt("%.3g", err) + ")";
+                       fmt("%.3g", err) + "; storage rounding alone " + fmt("%.2g", trial.storage_max_rel) + ")";
                 break;
             }
         }

@@ -30,6 +30,7 @@ struct PlanTrial {
     double sampling_max_rel = 0;     // measured on the trial table (the predicted error if kept)
     double sampling_p99_rel = 0;
     double integration_max_rel = 0;
+    double storage_max_rel = 0;      // rounding to the storage type alone (a floor for the sampled error)
     double seconds = 0;              // integration + measurement
 };
 

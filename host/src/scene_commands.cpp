@@ -154,7 +154,8 @@ nlohmann::json to_json(const ScenePlan &plan) {
         json trials = json::array();
         for (const PlanTrial &tr : t.trials)
             trials.push_back({{"counts", tr.counts}, {"bytes", tr.bytes}, {"sampling_max_rel", tr.sampling_max_rel},
-                              {"sampling_p99_rel", tr.sampling_p99_rel}, {"seconds", tr.seconds}});
+                              {"sampling_p99_rel", tr.sampling_p99_rel}, {"integration_max_rel", tr.integration_max_rel},
+                              {"storage_max_rel", tr.storage_max_rel}, {"seconds", tr.seconds}});
         e["trials"] = trials;
         j["tables"].push_back(e);
     }
