@@ -167,7 +167,7 @@ void resolve_table(PlannedTable &t, const ScenePlan &plan, Device &device, const
     if (!t.fixed_resolution) counts = fit_budget(counts, plan.storage, budget);
     const double target = t.target_rel;
     bool shrink_tried = false;
-    std::string stop;
+    std::string stop = "the trial limit (" + std::to_string(kMaxTrials) + ") is reached";
     Table best;
     auto better = [&](const PlanTrial &a, const PlanTrial &b) { // is a a better keeper than b?
         const bool ok_a = a.sampling_max_rel <= kAccept * target, ok_b = b.sampling_max_rel <= kAccept * target;
@@ -246,7 +246,6 @@ void resolve_table(PlannedTable &t, const ScenePlan &plan, Device &device, const
             break;
         }
         counts = next;
-        if (k + 1 == kMaxTrials) stop = "the trial limit (" + std::to_string(kMaxTrials) + ") is reached";
     }
     const PlanTrial &c = *t.chosen_trial();
     set_counts(t, c.counts);
