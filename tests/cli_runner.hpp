@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -27,8 +28,8 @@ inline std::string temp_stem(const std::string &tag) {
 }
 
 // Runs SLUT_BINARY with `args` (shell syntax) and `input` on stdin; captures stdout and
-// stderr.
-inline RunResult run_scatterlut(const std::string &args, const std::string &input = "") {
+// stderr (with_stderr: stderr also appended to out, for tests that read both as one text).
+inline RunResult run_scatterlut(const std::string &args, const std::string &input = "", bool with_stderr = false) {
     static int calls = 0;
     const std::string stem = temp_stem("run") + "_" + std::to_string(++calls);
     std::ofstream(stem + ".in") << input;
@@ -42,6 +43,7 @@ inline RunResult run_scatterlut(const std::string &args, const std::string &inpu
     std::ifstream err_file(stem + ".err", std::ios::binary);
     std::stringstream err;
     err << err_file.rdbuf();
+    if (with_stderr) out += err.str();
     std::filesystem::remove(stem + ".in");
     std::filesystem::remove(stem + ".err");
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out, err.str()};

@@ -16,8 +16,7 @@
 #include "eval.hpp"
 #include "inspect.hpp"
 #include "validate.hpp"
-#include "generate_airlight.hpp"
-#include "generate_nearlight.hpp"
+#include "scene_commands.hpp"
 #include "opencl_device.hpp"
 #include "scatterlut/io.hpp"
 #include "version.hpp"
@@ -39,18 +38,6 @@ std::string shell_quote(const std::string &arg) {
     for (char c : arg) out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
     return out + "'";
 }
-
-// Progress on a terminal only; silent when stderr is a pipe or a file.
-struct Progress {
-    bool enabled = isatty(STDERR_FILENO) != 0;
-    std::string label;
-    void operator()(double fraction) const {
-        if (!enabled) return;
-        std::fprintf(stderr, "\r%s %3d%%", label.c_str(), static_cast<int>(100.0 * fraction + 0.5));
-        if (fraction >= 1.0) std::fprintf(stderr, "\n");
-        std::fflush(stderr);
-    }
-};
 
 // ---------------------------------------------------------------- devices
 struct DevicesOptions {};
@@ -75,95 +62,7 @@ void setup_devices(CLI::App &app, int &exit_code) {
     cmd->callback([opt, &exit_code] { exit_code = run_devices(*opt); });
 }
 
-// ---------------------------------------------------------------- generate
-struct GenerateOptions {
-    std::string out_dir = "out";
-    std::string format = "both";
-    std::string storage = "f32";
-    std::string device;
-    AirlightPlan airlight;
-};
-
-void write_table(const Table &t, const std::string &out_dir, const std::string &stem, const std::string &format) {
-    std::filesystem::create_directories(out_dir);
-    if (format == "bin" || format == "both") {
-        const std::string path = out_dir + "/" + stem + ".slut";
-        save_binary(t, path);
-        std::cout << "  wrote " << path << "\n";
-    }
-    if (format == "exr" || format == "both") {
-        if (t.storage == Storage::F64) {
-            std::cout << "  (no EXR: f64 storage is binary only)\n";
-        } else {
-            const std::string path = out_dir + "/" + stem + ".exr";
-            save_exr(t, path);
-            std::cout << "  wrote " << path << "\n";
-        }
-    }
-}
-
-int run_generate(const GenerateOptions &opt) {
-    Device device(opt.device);
-    Provenance provenance;
-    provenance.generator_version = generator_version();
-    provenance.command_line = g_command_line;
-    provenance.device = device.info().describe();
-
-    Storage storage = Storage::F32;
-    storage_from_string(opt.storage, &storage);
-    std::cout << "device: " << device.info().describe() << "\n";
-
-    auto report = [&](const Table &table, const std::string &stem, const std::string &shape, double seconds) {
-        const auto &a = table.accuracy;
-        std::printf("%s: %s, %s, %.1f KiB, %.2f s (integration + accuracy measurement)\n", stem.c_str(),
-                    shape.c_str(), to_string(table.storage),
-                    static_cast<double>(table.node_count() * storage_bytes(table.storage)) / 1024.0, seconds);
-        std::printf("  integration max rel %.2e; storage rounding max rel %.2e\n", a.integration_max_rel,
-                    a.storage_max_rel);
-        std::printf("  sampling: max rel %.2e, p99 %.2e, median %.2e over %llu points (%s)\n", a.sampling_max_rel,
-                    a.sampling_p99_rel, a.sampling_median_rel, static_cast<unsigned long long>(a.sampling_points),
-                    a.sampling_domain.c_str());
-        write_table(table, opt.out_dir, stem, opt.format);
-    };
-    auto seconds_since = [](std::chrono::steady_clock::time_point t0) {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    };
-
-    AirlightPlan air = opt.airlight;
-    air.storage = storage;
-    auto start = std::chrono::steady_clock::now();
-    const Table f = generate_airlight_table(device, air, provenance, Progress{isatty(STDERR_FILENO) != 0, "airlight_F"});
-    report(f, "airlight_F", std::to_string(air.n_u) + " x " + std::to_string(air.n_w) + " (u x w)", seconds_since(start));
-
-    for (bool finite : {false, true}) {
-        NearLightPlan nl = default_near_light_plan(finite);
-        nl.storage = storage;
-        const std::string stem = finite ? "near_light_E4" : "near_light_E3";
-        start = std::chrono::steady_clock::now();
-        const Table e = generate_nearlight_table(device, nl, provenance, Progress{isatty(STDERR_FILENO) != 0, stem});
-        std::string shape = std::to_string(nl.n_T) + " x " + std::to_string(nl.n_g) + " x " + std::to_string(nl.n_r);
-        shape += finite ? " x " + std::to_string(nl.n_S) + " (T x g x r x S)" : " (T x g x r)";
-        report(e, stem, shape, seconds_since(start));
-    }
-    return 0;
-}
-
-void setup_generate(CLI::App &app, int &exit_code) {
-    auto opt = std::make_shared<GenerateOptions>();
-    auto *cmd = app.add_subcommand("generate", "Generate tables on the OpenCL device and write them");
-    cmd->add_option("--out", opt->out_dir, "Output directory")->capture_default_str();
-    cmd->add_option("--format", opt->format, "File format")->check(CLI::IsMember({"bin", "exr", "both"}))->capture_default_str();
-    cmd->add_option("--storage", opt->storage, "Stored precision (f16/f32 for EXR, f32/f64 for binary)")
-        ->check(CLI::IsMember({"f16", "f32", "f64"}))
-        ->capture_default_str();
-    cmd->add_option("--device", opt->device, "OpenCL device: P:D index or name substring (env SCATTERLUT_DEVICE)");
-    cmd->add_option("--u-max", opt->airlight.u_max, "Airlight table: largest u = sigma_t*D*sin(gamma)")
-        ->check(CLI::Range(1.0, 1e4))->capture_default_str();
-    cmd->add_option("--n-u", opt->airlight.n_u, "Airlight table: nodes along u")->check(CLI::Range(8, 16384))->capture_default_str();
-    cmd->add_option("--n-w", opt->airlight.n_w, "Airlight table: nodes along w = pi/2 - v")->check(CLI::Range(8, 16384))->capture_default_str();
-    cmd->add_option("--w-min", opt->airlight.w_min, "Airlight table: smallest w")->check(CLI::Range(1e-6, 0.1))->capture_default_str();
-    cmd->callback([opt, &exit_code] { exit_code = run_generate(*opt); });
-}
+// ---------------------------------------------------------------- plan, generate: scene_commands.cpp
 
 // ---------------------------------------------------------------- eval
 struct EvalOptions {
@@ -201,7 +100,8 @@ int main(int argc, char **argv) {
     app.require_subcommand(1);
     int exit_code = 0;
     setup_devices(app, exit_code);
-    setup_generate(app, exit_code);
+    setup_plan(app, exit_code);
+    setup_generate(app, exit_code, g_command_line);
     setup_eval(app, exit_code);
     setup_validate(app, exit_code);
     setup_inspect(app, exit_code);

@@ -1,0 +1,308 @@
+#include "scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "embedded_kernels.hpp"
+
+// The scenes embedded at build time (host/scenes/*.toml, cmake/embed_kernels.cmake).
+namespace scatterlut::embedded {
+extern const EmbeddedFile kSceneFiles[];
+extern const std::size_t kSceneFileCount;
+} // namespace scatterlut::embedded
+
+namespace scatterlut {
+namespace {
+
+// Messages: "FILE:LINE:COL: key 'path': expected …". Every check below goes through one
+// Reader so that each names the file, the place and the key's full dotted path.
+class Reader {
+public:
+    explicit Reader(std::string source) : source_(std::move(source)) {}
+
+    [[noreturn]] void fail(const toml::source_region &at, const std::string &key, const std::string &what) const {
+        std::ostringstream msg;
+        msg << source_ << ":" << at.begin.line << ":" << at.begin.column << ": key '" << key << "': " << what;
+        throw SceneError(msg.str());
+    }
+
+    // Refuses keys of `table` not in `known`.
+    void only_keys(const toml::table &table, const std::string &path, std::initializer_list<const char *> known) const {
+        for (const auto &[key, node] : table) {
+            const bool ok = std::any_of(known.begin(), known.end(), [&](const char *k) { return key.str() == k; });
+            if (ok) continue;
+            std::string list;
+            for (const char *k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+            fail(key.source(), join(path, std::string(key.str())), "expected one of " + list + " (unknown key)");
+        }
+    }
+
+    const toml::table *table(const toml::table &parent, const char *key, const std::string &path) const {
+        const toml::node *n = parent.get(key);
+        if (!n) return nullptr;
+        if (!n->is_table()) fail(n->source(), join(path, key), "expected a table ([" + join(path, key) + "])");
+        return n->as_table();
+    }
+
+    // A finite number (integer or floating point) with lo ≤ x (or lo < x) and x ≤ hi.
+    double number(const toml::table &t, const char *key, const std::string &path, bool required, double fallback,
+                  double lo, bool lo_open, double hi, const std::string &expect) const {
+        const toml::node *n = t.get(key);
+        if (!n) {
+            if (required) fail(t.source(), join(path, key), "expected " + expect + " (missing)");
+            return fallback;
+        }
+        return number_value(*n, join(path, key), lo, lo_open, hi, expect);
+    }
+
+    double number_value(const toml::node &n, const std::string &key, double lo, bool lo_open, double hi,
+                        const std::string &expect) const {
+        if (!n.is_number()) fail(n.source(), key, "expected " + expect + ", got " + type_name(n));
+        const double x = n.value<double>().value_or(std::nan(""));
+        if (!std::isfinite(x)) fail(n.source(), key, "expected " + expect + ", got " + shown(x));
+        if (x < lo || (lo_open && x == lo) || x > hi) fail(n.source(), key, "expected " + expect + ", got " + shown(x));
+        return x;
+    }
+
+    std::string string(const toml::table &t, const char *key, const std::string &path, bool required,
+                       const std::string &fallback, std::initializer_list<const char *> allowed = {}) const {
+        const toml::node *n = t.get(key);
+        if (!n) {
+            if (required) fail(t.source(), join(path, key), "expected a string (missing)");
+            return fallback;
+        }
+        if (!n->is_string()) fail(n->source(), join(path, key), "expected a string, got " + type_name(*n));
+        const std::string s = n->value<std::string>().value_or("");
+        if (allowed.size() == 0) {
+            if (s.empty()) fail(n->source(), join(path, key), "expected a non-empty string");
+            return s;
+        }
+        std::string list;
+        for (const char *a : allowed) {
+            if (s == a) return s;
+            list += (list.empty() ? "" : ", ") + std::string("'") + a + "'";
+        }
+        fail(n->source(), join(path, key), "expected one of " + list + ", got '" + s + "'");
+    }
+
+    bool boolean(const toml::table &t, const char *key, const std::string &path, bool required, bool fallback) const {
+        const toml::node *n = t.get(key);
+        if (!n) {
+            if (required) fail(t.source(), join(path, key), "expected true or false (missing)");
+            return fallback;
+        }
+        if (!n->is_boolean()) fail(n->source(), join(path, key), "expected true or false, got " + type_name(*n));
+        return n->value<bool>().value_or(false);
+    }
+
+    // [min, max] with 0 < min ≤ max, both finite (lengths in m).
+    Range range(const toml::node &n, const std::string &key) const {
+        const char *expect = "[min, max] in m with 0 < min <= max";
+        const toml::array *a = n.as_array();
+        if (!a || a->size() != 2) fail(n.source(), key, std::string("expected ") + expect + ", got " + type_name(n));
+        Range r;
+        r.min = number_value(*a->get(0), key + "[0]", 0.0, true, HUGE_VAL, "a number > 0 (m)");
+        r.max = number_value(*a->get(1), key + "[1]", 0.0, true, HUGE_VAL, "a number > 0 (m)");
+        if (r.min > r.max)
+            fail(n.source(), key, std::string("expected ") + expect + ", got an inverted range [" + shown(r.min) + ", " +
+                                      shown(r.max) + "]");
+        return r;
+    }
+
+    static std::string join(const std::string &path, const std::string &key) {
+        return path.empty() ? key : path + "." + key;
+    }
+
+private:
+    static std::string type_name(const toml::node &n) {
+        switch (n.type()) {
+        case toml::node_type::table: return "a table";
+        case toml::node_type::array: return "an array";
+        case toml::node_type::string: return "a string";
+        case toml::node_type::integer: return "an integer";
+        case toml::node_type::floating_point: return "a number";
+        case toml::node_type::boolean: return "a boolean";
+        default: return "a date or time";
+        }
+    }
+    static std::string shown(double x) {
+        std::ostringstream s;
+        s.precision(6);
+        s << x;
+        return s.str();
+    }
+    std::string source_;
+};
+
+SceneMedium read_medium(const Reader &rd, const toml::table &t, const std::string &path, double relative_error) {
+    rd.only_keys(t, path,
+                 {"name", "sigma_s_per_m", "sigma_a_per_m", "viewer_inside", "thick", "thickness_m", "relative_error"});
+    SceneMedium m;
+    m.line = static_cast<int>(t.source().begin.line);
+    m.name = rd.string(t, "name", path, true, "");
+    m.sigma_s_per_m = rd.number(t, "sigma_s_per_m", path, true, 0, 0.0, false, HUGE_VAL, "a finite number >= 0 (1/m)");
+    m.sigma_a_per_m = rd.number(t, "sigma_a_per_m", path, true, 0, 0.0, false, HUGE_VAL, "a finite number >= 0 (1/m)");
+    m.viewer_inside = rd.boolean(t, "viewer_inside", path, true, false);
+    m.relative_error = rd.number(t, "relative_error", path, false, relative_error, 0.0, true, 0.5,
+                                 "a relative error on radiance in (0, 0.5]");
+    m.thick = rd.boolean(t, "thick", path, false, false);
+    if (const toml::node *n = t.get("thickness_m")) {
+        m.thickness_m = rd.range(*n, Reader::join(path, "thickness_m"));
+        m.has_thickness = true;
+    }
+    if (m.viewer_inside && (m.thick || m.has_thickness)) {
+        const char *key = m.has_thickness ? "thickness_m" : "thick";
+        rd.fail(t.get(key)->source(), Reader::join(path, key),
+                "expected no such key: it applies only to media seen from outside (viewer_inside = false)");
+    }
+    if (!m.viewer_inside && !m.thick && !m.has_thickness)
+        rd.fail(t.source(), Reader::join(path, "thickness_m"),
+                "expected thick = true and/or thickness_m = [min, max] for a medium seen from outside (missing)");
+    return m;
+}
+
+SceneLight read_light(const Reader &rd, const toml::table &t, const std::string &path) {
+    SceneLight l;
+    l.line = static_cast<int>(t.source().begin.line);
+    const std::string type = rd.string(t, "type", path, true, "", {"point", "directional"});
+    l.type = type == "point" ? LightType::Point : LightType::Directional;
+    if (l.type == LightType::Point) {
+        rd.only_keys(t, path, {"name", "type", "intensity_W_per_sr", "distance_m", "media"});
+        l.intensity_W_per_sr =
+            rd.number(t, "intensity_W_per_sr", path, true, 0, 0.0, true, HUGE_VAL, "a finite number > 0 (W/sr)");
+        const toml::node *d = t.get("distance_m");
+        if (!d) rd.fail(t.source(), Reader::join(path, "distance_m"), "expected [min, max] in m (missing)");
+        l.distance_m = rd.range(*d, Reader::join(path, "distance_m"));
+    } else {
+        rd.only_keys(t, path, {"name", "type", "irradiance_W_per_m2", "media"});
+        l.irradiance_W_per_m2 =
+            rd.number(t, "irradiance_W_per_m2", path, false, 1.0, 0.0, true, HUGE_VAL, "a finite number > 0 (W/m^2)");
+    }
+    l.name = rd.string(t, "name", path, true, "");
+    if (const toml::node *n = t.get("media")) {
+        const std::string key = Reader::join(path, "media");
+        const toml::array *a = n->as_array();
+        if (!a || a->empty()) rd.fail(n->source(), key, "expected a non-empty array of medium names");
+        for (size_t i = 0; i < a->size(); ++i) {
+            const toml::node &e = *a->get(i);
+            if (!e.is_string()) rd.fail(e.source(), key + "[" + std::to_string(i) + "]", "expected a medium name (string)");
+            l.media.push_back(e.value<std::string>().value_or(""));
+        }
+    }
+    return l;
+}
+
+// Checks across tables: unique names, lights naming media that exist.
+void check_names(const Reader &rd, const toml::table &root, const Scene &s) {
+    std::set<std::string> media;
+    for (size_t i = 0; i < s.media.size(); ++i) {
+        if (!media.insert(s.media[i].name).second) {
+            const toml::node &n = *root["medium"][i]["name"].node();
+            rd.fail(n.source(), "medium[" + std::to_string(i) + "].name", "expected a name no other medium has");
+        }
+    }
+    std::set<std::string> lights;
+    for (size_t i = 0; i < s.lights.size(); ++i) {
+        const std::string path = "light[" + std::to_string(i) + "]";
+        if (!lights.insert(s.lights[i].name).second)
+            rd.fail(root["light"][i]["name"].node()->source(), path + ".name", "expected a name no other light has");
+        for (size_t k = 0; k < s.lights[i].media.size(); ++k)
+            if (!media.count(s.lights[i].media[k]))
+                rd.fail(root["light"][i]["media"][k].node()->source(), path + ".media[" + std::to_string(k) + "]",
+                        "expected the name of a [[medium]], got '" + s.lights[i].media[k] + "'");
+    }
+}
+
+// [[medium]] / [[light]]: an array of tables (one table alone is accepted too).
+template <class Item, class ReadFn>
+std::vector<Item> read_array(const Reader &rd, const toml::table &root, const char *key, ReadFn read) {
+    std::vector<Item> out;
+    const toml::node *n = root.get(key);
+    if (!n) return out;
+    const toml::array *a = n->as_array();
+    if (!a) rd.fail(n->source(), key, std::string("expected an array of tables ([[") + key + "]])");
+    for (size_t i = 0; i < a->size(); ++i) {
+        const toml::node &e = *a->get(i);
+        const std::string path = std::string(key) + "[" + std::to_string(i) + "]";
+        if (!e.is_table()) rd.fail(e.source(), path, std::string("expected a table ([[") + key + "]])");
+        out.push_back(read(rd, *e.as_table(), path));
+    }
+    return out;
+}
+
+} // namespace
+
+bool Scene::lights_medium(const SceneLight &light, const SceneMedium &medium) {
+    return light.media.empty() || std::find(light.media.begin(), light.media.end(), medium.name) != light.media.end();
+}
+
+Scene parse_scene(const std::string &text, const std::string &source) {
+    toml::table root;
+    try {
+        root = toml::parse(text, source);
+    } catch (const toml::parse_error &e) {
+        std::ostringstream msg;
+        msg << source << ":" << e.source().begin.line << ":" << e.source().begin.column
+            << ": syntax error: " << e.description();
+        throw SceneError(msg.str());
+    }
+    const Reader rd(source);
+    Scene s;
+    s.source = source;
+    s.text = text;
+    rd.only_keys(root, "", {"name", "accuracy", "view", "output", "medium", "light"});
+    s.name = rd.string(root, "name", "", false, "");
+    if (const toml::table *a = rd.table(root, "accuracy", "")) {
+        rd.only_keys(*a, "accuracy", {"relative_error", "max_table_MiB"});
+        s.relative_error = rd.number(*a, "relative_error", "accuracy", false, s.relative_error, 0.0, true, 0.5,
+                                     "a relative error on radiance in (0, 0.5]");
+        s.max_table_MiB = rd.number(*a, "max_table_MiB", "accuracy", false, s.max_table_MiB, 0.0, true, 4096.0,
+                                    "a size in MiB in (0, 4096]");
+    }
+    if (const toml::table *v = rd.table(root, "view", "")) {
+        rd.only_keys(*v, "view", {"max_view_angle_deg", "max_light_angle_deg"});
+        s.view.max_view_angle_deg = rd.number(*v, "max_view_angle_deg", "view", false, s.view.max_view_angle_deg, 0.0,
+                                              true, 89.9, "an angle in degrees in (0, 89.9]");
+        s.view.max_light_angle_deg = rd.number(*v, "max_light_angle_deg", "view", false, s.view.max_light_angle_deg,
+                                               0.0, true, 90.0, "an angle in degrees in (0, 90]");
+    }
+    if (const toml::table *o = rd.table(root, "output", "")) {
+        rd.only_keys(*o, "output", {"directory", "format", "storage"});
+        s.output.directory = rd.string(*o, "directory", "output", false, s.output.directory);
+        s.output.format = rd.string(*o, "format", "output", false, s.output.format, {"bin", "exr", "both"});
+        s.output.storage = rd.string(*o, "storage", "output", false, s.output.storage, {"f16", "f32", "f64"});
+        if (s.output.format == "exr" && s.output.storage == "f64")
+            rd.fail(o->get("storage")->source(), "output.storage",
+                    "expected 'f16' or 'f32' with format 'exr' (EXR holds no f64; f64 needs format 'bin' or 'both')");
+    }
+    s.media = read_array<SceneMedium>(rd, root, "medium", [&](const Reader &r, const toml::table &t, const std::string &p) {
+        return read_medium(r, t, p, s.relative_error);
+    });
+    s.lights = read_array<SceneLight>(rd, root, "light", read_light);
+    check_names(rd, root, s);
+    return s;
+}
+
+Scene load_scene_file(const std::string &path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw SceneError(path + ": cannot read the scene file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw SceneError(path + ": cannot read the scene file");
+    return parse_scene(text.str(), path);
+}
+
+Scene default_scene() {
+    for (std::size_t i = 0; i < embedded::kSceneFileCount; ++i)
+        if (std::string(embedded::kSceneFiles[i].name) == "default.toml")
+            return parse_scene(embedded::kSceneFiles[i].contents, "<default scene>");
+    throw std::logic_error("the default scene is not embedded in this binary");
+}
+
+} // namespace scatterlut

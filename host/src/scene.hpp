@@ -1,0 +1,85 @@
+// scatterlut generator — a scene file (TOML, docs/SCENES.md): the media, the lights, the
+// view ranges that matter, the output and the accepted error. Parsing checks every key
+// and value; a bad scene throws SceneError naming file, line, column and key.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace scatterlut {
+
+// "FILE:LINE:COL: key 'a.b.c': expected …". Derives from std::invalid_argument: bad
+// input (exit 2 in the command line).
+class SceneError : public std::invalid_argument {
+public:
+    using std::invalid_argument::invalid_argument;
+};
+
+struct Range {
+    double min = 0, max = 0;
+};
+
+struct SceneMedium {
+    std::string name;
+    double sigma_s_per_m = 0; // scattering coefficient, 1/m
+    double sigma_a_per_m = 0; // absorption coefficient, 1/m
+    bool viewer_inside = false; // true: a volume the viewer is in (fog); false: an object seen from outside
+    // Media seen from outside: a thick object (the view ray does not leave it) and/or slabs
+    // whose path length inside along the view ray lies in `thickness_m`.
+    bool thick = false;
+    bool has_thickness = false;
+    Range thickness_m;
+    double relative_error = 0; // accepted relative error on its radiance (default: the scene's)
+    int line = 0; // where the [[medium]] table starts (for messages)
+    double sigma_t_per_m() const { return sigma_s_per_m + sigma_a_per_m; }
+};
+
+enum class LightType { Point, Directional };
+
+struct SceneLight {
+    std::string name;
+    LightType type = LightType::Point;
+    double intensity_W_per_sr = 0;  // point lights
+    Range distance_m;               // point lights: viewer–light (viewer inside) or surface point–light (outside)
+    double irradiance_W_per_m2 = 0; // directional lights (informative; radiance scales with it)
+    std::vector<std::string> media; // the media it lights; empty in the file = all media
+    int line = 0;
+};
+
+struct SceneView {
+    // Media seen from outside: the largest angle between the view ray (towards the viewer)
+    // and the outward surface normal, and between the direction to the light and the normal.
+    double max_view_angle_deg = 80.0;
+    double max_light_angle_deg = 90.0;
+};
+
+struct SceneOutput {
+    std::string directory = "out";
+    std::string format = "both"; // bin | exr | both
+    std::string storage = "f32"; // f16 | f32 | f64
+};
+
+struct Scene {
+    std::string source; // the file name (or "<default scene>")
+    std::string text;   // the TOML text, recorded in every table's provenance
+    std::string name;
+    double relative_error = 0.01; // accepted relative error on radiance
+    double max_table_MiB = 64.0;  // bound on each table's size
+    SceneView view;
+    SceneOutput output;
+    std::vector<SceneMedium> media;
+    std::vector<SceneLight> lights;
+
+    // Whether `light` lights `medium` (a light without a media list lights all media).
+    static bool lights_medium(const SceneLight &light, const SceneMedium &medium);
+};
+
+// Parses and checks `text`; `source` names it in messages. Throws SceneError.
+Scene parse_scene(const std::string &text, const std::string &source);
+// Reads the file and parses it (an unreadable file is a SceneError too).
+Scene load_scene_file(const std::string &path);
+// The scene compiled into the binary (host/scenes/default.toml): every table kind.
+Scene default_scene();
+
+} // namespace scatterlut

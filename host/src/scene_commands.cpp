@@ -1,0 +1,252 @@
+#include "scene_commands.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "opencl_device.hpp"
+#include "plan.hpp"
+#include "scene.hpp"
+#include "scatterlut/io.hpp"
+#include "version.hpp"
+
+namespace scatterlut {
+namespace {
+
+// Progress on a terminal only; silent when stderr is a pipe or a file.
+struct Progress {
+    bool enabled = isatty(STDERR_FILENO) != 0;
+    void operator()(const std::string &label, double fraction) const {
+        if (!enabled) return;
+        std::fprintf(stderr, "\r%-60s %3d%%", label.c_str(), static_cast<int>(100.0 * fraction + 0.5));
+        if (fraction >= 1.0) std::fprintf(stderr, "\n");
+        std::fflush(stderr);
+    }
+};
+
+// What plan and generate share: the scene, the device, the storage and the airlight
+// overrides (the historical generate flags).
+struct SceneOptions {
+    std::string scene_file; // "" = the embedded default scene
+    std::string device;
+    std::string format, storage; // "" = the scene's [output]
+    std::optional<double> u_max, w_min;
+    std::optional<int> n_u, n_w;
+};
+
+void add_scene_options(CLI::App *cmd, SceneOptions &o) {
+    cmd->add_option("--scene", o.scene_file, "Scene file (TOML, docs/SCENES.md); default: the embedded default scene")
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--device", o.device, "OpenCL device: P:D index or name substring (env SCATTERLUT_DEVICE)");
+    cmd->add_option("--format", o.format, "File format, overrides the scene's output.format")
+        ->check(CLI::IsMember({"bin", "exr", "both"}));
+    cmd->add_option("--storage", o.storage, "Stored precision, overrides output.storage (f16/f32 for EXR, f32/f64 binary)")
+        ->check(CLI::IsMember({"f16", "f32", "f64"}));
+    cmd->add_option("--u-max", o.u_max, "Airlight table: largest u = sigma_t*D*sin(gamma) (default: from the scene)")
+        ->check(CLI::Range(1.0, 1e4));
+    cmd->add_option("--n-u", o.n_u, "Airlight table: nodes along u (fixes the resolution instead of searching)")
+        ->check(CLI::Range(8, 16384));
+    cmd->add_option("--n-w", o.n_w, "Airlight table: nodes along w = pi/2 - v (fixes the resolution)")
+        ->check(CLI::Range(8, 16384));
+    cmd->add_option("--w-min", o.w_min, "Airlight table: smallest w")->check(CLI::Range(1e-6, 0.1));
+}
+
+Scene load(const SceneOptions &o) { return o.scene_file.empty() ? default_scene() : load_scene_file(o.scene_file); }
+
+ScenePlan make_plan(const SceneOptions &o, Scene scene) {
+    if (!o.format.empty()) scene.output.format = o.format;
+    if (!o.storage.empty()) scene.output.storage = o.storage;
+    if (scene.output.format == "exr" && scene.output.storage == "f64")
+        throw std::invalid_argument("--storage f64 needs a binary format (--format bin or both): EXR holds no f64");
+    Storage storage = Storage::F32;
+    storage_from_string(scene.output.storage, &storage);
+    return derive_plan(scene, storage, AirlightOverrides{o.u_max, o.w_min, o.n_u, o.n_w});
+}
+
+std::string axis_domain(const Axis &a) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s in [%.4g, %.4g] (%s, %d nodes)", a.name.c_str(), a.map.min, a.map.max,
+                  warp_name(a.map.warp), a.map.count);
+    return buf;
+}
+
+std::string counts_text(const std::vector<int> &c) {
+    std::string s;
+    for (int k : c) s += (s.empty() ? "" : " x ") + std::to_string(k);
+    return s;
+}
+
+void print_text(const ScenePlan &plan) {
+    const Scene &s = plan.scene;
+    std::printf("scene: %s%s(%s), accepted relative error on radiance %.3g, %s\n", s.name.c_str(),
+                s.name.empty() ? "" : " ", s.source.c_str(), s.relative_error, to_string(plan.storage));
+    size_t total = 0;
+    for (const PlannedTable &t : plan.tables) {
+        const PlanTrial &c = *t.chosen_trial();
+        total += c.bytes;
+        std::printf("\n%s: %s, %.1f KiB\n", t.kind.c_str(), counts_text(c.counts).c_str(),
+                    static_cast<double>(c.bytes) / 1024.0);
+        for (const auto &r : t.requested_by)
+            std::printf("  asked for by medium '%s' with light '%s': %s\n", r.medium.c_str(), r.light.c_str(),
+                        r.need.c_str());
+        for (const auto &a : t.table.axes) std::printf("  axis %s\n", axis_domain(a).c_str());
+        for (const auto &n : t.domain_notes) std::printf("  (%s)\n", n.c_str());
+        std::printf("  target on the table's quantity: %.3g (%s, the strictest of the media asking)\n", t.target_rel,
+                    t.kind == kKindAirlightF ? "a third of the radiance error: the airlight is a difference of two samples"
+                                             : "the radiance error: L = sigma_s p I0 sigma_t H E, H exact");
+        for (size_t i = 0; i < t.trials.size(); ++i) {
+            const PlanTrial &tr = t.trials[i];
+            std::printf("  %s trial %zu: %-20s max %.3g, p99 %.3g, integration %.2g, %.2f s\n",
+                        static_cast<int>(i) == t.chosen ? "*" : " ", i + 1, counts_text(tr.counts).c_str(),
+                        tr.sampling_max_rel, tr.sampling_p99_rel, tr.integration_max_rel, tr.seconds);
+        }
+        std::printf("  predicted error (measured, max over %llu random points): %.3g\n",
+                    static_cast<unsigned long long>(t.table.accuracy.sampling_points), c.sampling_max_rel);
+        std::printf("  %s\n", t.verdict.c_str());
+    }
+    if (plan.tables.empty()) std::printf("\nno tables\n");
+    for (const std::string &n : plan.notes) std::printf("note: %s\n", n.c_str());
+    std::printf("\ntotal: %zu table(s), %.1f KiB; the search took %.2f s (generate repeats it, then writes)\n",
+                plan.tables.size(), static_cast<double>(total) / 1024.0, plan.search_seconds);
+}
+
+nlohmann::json to_json(const ScenePlan &plan) {
+    using nlohmann::json;
+    json j;
+    j["scene"] = {{"name", plan.scene.name}, {"source", plan.scene.source}, {"relative_error", plan.scene.relative_error},
+                  {"max_table_MiB", plan.scene.max_table_MiB}};
+    j["output"] = {{"directory", plan.scene.output.directory}, {"format", plan.scene.output.format},
+                   {"storage", to_string(plan.storage)}};
+    j["tables"] = json::array();
+    for (const PlannedTable &t : plan.tables) {
+        const PlanTrial &c = *t.chosen_trial();
+        json e;
+        e["kind"] = t.kind;
+        e["file_stem"] = t.kind;
+        json req = json::array();
+        for (const auto &r : t.requested_by) req.push_back({{"medium", r.medium}, {"light", r.light}, {"need", r.need}});
+        e["requested_by"] = req;
+        json axes = json::array();
+        for (const auto &a : t.table.axes)
+            axes.push_back({{"name", a.name}, {"min", a.map.min}, {"max", a.map.max}, {"warp", warp_name(a.map.warp)},
+                            {"count", a.map.count}});
+        e["axes"] = axes;
+        e["domain_notes"] = t.domain_notes;
+        e["bytes"] = c.bytes;
+        e["target_rel"] = t.target_rel;
+        e["predicted_max_rel"] = c.sampling_max_rel;
+        e["predicted_p99_rel"] = c.sampling_p99_rel;
+        e["integration_max_rel"] = c.integration_max_rel;
+        e["reached"] = t.reached;
+        e["fixed_resolution"] = t.fixed_resolution;
+        e["verdict"] = t.verdict;
+        e["seconds"] = c.seconds; // the chosen trial alone
+        double search = 0;
+        for (const PlanTrial &tr : t.trials) search += tr.seconds;
+        e["estimated_seconds"] = search; // what generate spends on this table (it repeats the search)
+        json trials = json::array();
+        for (const PlanTrial &tr : t.trials)
+            trials.push_back({{"counts", tr.counts}, {"bytes", tr.bytes}, {"sampling_max_rel", tr.sampling_max_rel},
+                              {"sampling_p99_rel", tr.sampling_p99_rel}, {"integration_max_rel", tr.integration_max_rel},
+                              {"storage_max_rel", tr.storage_max_rel}, {"seconds", tr.seconds}});
+        e["trials"] = trials;
+        j["tables"].push_back(e);
+    }
+    j["notes"] = plan.notes;
+    j["search_seconds"] = plan.search_seconds;
+    return j;
+}
+
+// The resolution search of every table on the device selected by `selector`.
+void resolve_on_device(ScenePlan &plan, const std::string &selector, const std::string &command_line) {
+    if (plan.tables.empty()) return; // nothing to generate: no device needed
+    Device device(selector);
+    std::cerr << "device: " << device.info().describe() << "\n";
+    Provenance provenance;
+    provenance.generator_version = generator_version();
+    provenance.command_line = command_line;
+    provenance.device = device.info().describe();
+    const Progress progress;
+    resolve_plan(plan, device, provenance, [&](const std::string &label, double f) { progress(label, f); });
+}
+
+// ---------------------------------------------------------------- plan
+struct PlanOptions {
+    SceneOptions scene;
+    bool json = false;
+};
+
+int run_plan(const PlanOptions &opt) {
+    ScenePlan plan = make_plan(opt.scene, load(opt.scene)); // a bad scene throws here, before any work
+    resolve_on_device(plan, opt.scene.device, "");
+    if (opt.json) std::cout << to_json(plan).dump(2) << "\n";
+    else print_text(plan);
+    return 0;
+}
+
+// ---------------------------------------------------------------- generate
+struct GenerateOptions {
+    SceneOptions scene;
+    std::string out_dir; // "" = the scene's output.directory
+};
+
+void write_table(const Table &t, const std::string &out_dir, const std::string &stem, const std::string &format) {
+    std::filesystem::create_directories(out_dir);
+    if (format == "bin" || format == "both") {
+        const std::string path = out_dir + "/" + stem + ".slut";
+        save_binary(t, path);
+        std::cout << "  wrote " << path << "\n";
+    }
+    if (format == "exr" || format == "both") {
+        if (t.storage == Storage::F64) {
+            std::cout << "  (no EXR: f64 storage is binary only)\n";
+        } else {
+            const std::string path = out_dir + "/" + stem + ".exr";
+            save_exr(t, path);
+            std::cout << "  wrote " << path << "\n";
+        }
+    }
+}
+
+int run_generate(const GenerateOptions &opt, const std::string &command_line) {
+    ScenePlan plan = make_plan(opt.scene, load(opt.scene));
+    const std::string out_dir = opt.out_dir.empty() ? plan.scene.output.directory : opt.out_dir;
+    resolve_on_device(plan, opt.scene.device, command_line);
+    print_text(plan);
+    // Only now, with every table generated and measured, is anything written.
+    for (const PlannedTable &t : plan.tables) {
+        std::cout << t.kind << ":\n";
+        write_table(t.table, out_dir, t.kind, plan.scene.output.format);
+        if (!t.reached) std::cerr << "scatterlut: warning: " << t.kind << ": " << t.verdict << "\n";
+    }
+    return 0;
+}
+
+} // namespace
+
+void setup_plan(CLI::App &app, int &exit_code) {
+    auto opt = std::make_shared<PlanOptions>();
+    auto *cmd = app.add_subcommand(
+        "plan", "Which tables a scene calls for and why, their domains, resolutions (searched on the device), "
+                "sizes, predicted errors and time; writes nothing");
+    add_scene_options(cmd, opt->scene);
+    cmd->add_flag("--json", opt->json, "One JSON object on stdout (\"tables\": one entry per table)");
+    cmd->callback([opt, &exit_code] { exit_code = run_plan(*opt); });
+}
+
+void setup_generate(CLI::App &app, int &exit_code, const std::string &command_line) {
+    auto opt = std::make_shared<GenerateOptions>();
+    auto *cmd = app.add_subcommand("generate", "Carry out a scene's plan: generate its tables on the OpenCL device and write them");
+    add_scene_options(cmd, opt->scene);
+    cmd->add_option("--out", opt->out_dir, "Output directory (default: the scene's output.directory)");
+    cmd->callback([opt, &exit_code, &command_line] { exit_code = run_generate(*opt, command_line); });
+}
+
+} // namespace scatterlut
