@@ -70,11 +70,15 @@ SLUT_FN double slut_warp_inverse(int warp, double y, double p_min, double scale)
     }
 }
 
-/* Parameter → unit coordinate x (not clamped), for an axis [p_min, p_max] with this warp. */
+/* Parameter → unit coordinate x ∈ [0, 1], for an axis [p_min, p_max] with this warp. The
+   parameter is clamped to the axis first (clamp-to-edge): a warp need not be defined
+   beyond the ends (LOG1P below p_min − scale, LOG at p ≤ 0), and NaN goes to p_min, so
+   that no parameter can give a node index outside the table. */
 SLUT_FN double slut_unit_from_warp(int warp, double p, double p_min, double p_max, double scale) {
+    double q = (p > p_min) ? ((p < p_max) ? p : p_max) : p_min;
     double g0 = slut_warp_forward(warp, p_min, p_min, scale);
     double g1 = slut_warp_forward(warp, p_max, p_min, scale);
-    return (slut_warp_forward(warp, p, p_min, scale) - g0) / (g1 - g0);
+    return (slut_warp_forward(warp, q, p_min, scale) - g0) / (g1 - g0);
 }
 
 /* Unit coordinate → GPU texture coordinate (texel centres at the domain ends). */
@@ -106,7 +110,7 @@ typedef struct slut_axis {
     int count;    /* nodes, ≥ 2 */
 } slut_axis;
 
-/* Parameter → unit coordinate x (not clamped). */
+/* Parameter → unit coordinate x ∈ [0, 1] (the parameter clamped to the axis). */
 SLUT_FN double slut_unit_from_param(const slut_axis *a, double p) {
     return slut_unit_from_warp(a->warp, p, a->min, a->max, a->scale);
 }

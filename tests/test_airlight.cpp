@@ -231,6 +231,30 @@ TEST(AxisMaps, RoundTripAndTexelCentres) {
     }
 }
 
+// Beyond its ends every axis clamps to its end node, whatever the warp does there: LOG1P
+// is undefined below min − scale (the default near-light T axis starts at 1.26 with
+// scale 0.3), LOG at p ≤ 0; NaN goes to the first node. Found by the near-light shader
+// test: a T below 0.96 gave a NaN unit coordinate and an index outside the table.
+TEST(AxisMaps, BeyondTheEndsClampToTheEndNodes) {
+    const slut_axis axes[] = {{1.26, 12.6, 0.3, SLUT_WARP_LOG1P, 17},
+                              {1e-3, 100.0, 0.0, SLUT_WARP_LOG, 9},
+                              {1e-3, SLUT_PIO2_HI, 0.0, SLUT_WARP_ASINH_COT, 9},
+                              {-0.99, 1.0, 0.0, SLUT_WARP_SQRT1P, 9},
+                              {-2.0, 3.0, 0.0, SLUT_WARP_LINEAR, 9}};
+    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = HUGE_VAL;
+    for (const auto &a : axes) {
+        for (double below : {a.min - 1.0, a.min - 1e3, -inf, nan}) {
+            EXPECT_EQ(slut_unit_from_param(&a, below), 0.0) << "warp " << a.warp << " p " << below;
+            int i0;
+            double f;
+            slut_cell_from_unit(slut_unit_from_param(&a, below), a.count, &i0, &f);
+            EXPECT_EQ(i0, 0);
+            EXPECT_EQ(f, 0.0);
+        }
+        for (double above : {a.max + 1.0, a.max * 1e3 + 1e3, inf}) EXPECT_EQ(slut_unit_from_param(&a, above), 1.0);
+    }
+}
+
 // ----------------------------------------------------------------- the table path
 
 namespace {
