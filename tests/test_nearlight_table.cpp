@@ -49,6 +49,7 @@ const scatterlut::Table &small_table(bool finite) {
 TEST(NearLightKernel, EveryNodeMatchesBoostReference) {
     for (bool finite : {false, true}) {
         const scatterlut::Table &t = small_table(finite);
+        const scatterlut::NearLightTable table(t);
         double worst = 0;
         size_t node[4] = {0, 0, 0, 0};
         const size_t n_axes = t.axes.size();
@@ -58,16 +59,14 @@ TEST(NearLightKernel, EveryNodeMatchesBoostReference) {
                 node[a] = rest % static_cast<size_t>(t.axes[a].map.count);
                 rest /= static_cast<size_t>(t.axes[a].map.count);
             }
-            const double T = slut_axis_node(&t.axes[0].map, static_cast<int>(node[0]));
-            const double g = slut_axis_node(&t.axes[1].map, static_cast<int>(node[1]));
-            const double r = slut_axis_node(&t.axes[2].map, static_cast<int>(node[2]));
-            const double S = finite ? slut_axis_node(&t.axes[3].map, static_cast<int>(node[3]))
-                                    : std::numeric_limits<double>::infinity();
+            double at[4]; // T, g, r, S (+inf in a thick table) by the table's own axis maps
+            table.node_params(node, at);
+            const double T = at[0], g = at[1], r = at[2], S = at[3];
             // S = 0: N and H vanish; E is their limit, the attenuation at the entry point:
             // e^{−T} for r = 0 (the whole light path inside), 1 for r > 0.
             const double want = S == 0.0 ? (r == 0.0 ? std::exp(-T) : 1.0)
                                          : static_cast<double>(slut_ref::nearlight_NHE(T, g, r, S).E);
-            const double got = std::exp(t.values[t.index(node)]);
+            const double got = table.node_E(node);
             const double err = slut_test::rel_err(got, want);
             ASSERT_LE(err, 1e-8) << "T=" << T << " g=" << g << " r=" << r << " S=" << S;
             worst = std::max(worst, err);

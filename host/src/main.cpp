@@ -142,7 +142,7 @@ int run_generate(const GenerateOptions &opt) {
         start = std::chrono::steady_clock::now();
         const Table e = generate_nearlight_table(device, nl, provenance, Progress{isatty(STDERR_FILENO) != 0, stem});
         std::string shape = std::to_string(nl.n_T) + " x " + std::to_string(nl.n_g) + " x " + std::to_string(nl.n_r);
-        shape += finite ? " x " + std::to_string(nl.n_S) + " (T x g x r x S)" : " (T x g x r)";
+        shape += finite ? " x " + std::to_string(nl.n_S) + " (T x g x r x q)" : " (T x g x r)";
         report(e, stem, shape, seconds_since(start));
     }
     return 0;
