@@ -25,10 +25,10 @@ NearLightPlan default_near_light_plan(bool finite_thickness) {
     NearLightPlan plan;
     plan.finite_thickness = finite_thickness;
     if (finite_thickness) {
-        plan.n_T = 48;
-        plan.n_g = 40;
+        plan.n_T = 80;
+        plan.n_g = 32;
         plan.n_r = 64;
-        plan.n_S = 40;
+        plan.n_S = 48;
         plan.r_scale = 1e-9;
         plan.g_warp = SLUT_WARP_LOG1P;
         plan.g_scale = 0.02;
@@ -126,17 +126,12 @@ double measure_nearlight_integration(const Table &table, int nodes, uint64_t see
     return *std::max_element(err.begin(), err.end());
 }
 
-SamplingStats measure_nearlight_sampling(const NearLightTable &table, int points, uint64_t seed) {
-    const Table &t = table.table();
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    std::vector<std::array<double, 4>> at(static_cast<size_t>(points));
-    for (auto &p : at) {
-        p[3] = std::numeric_limits<double>::infinity();
-        for (size_t a = 0; a < t.axes.size(); ++a) p[a] = slut_param_from_unit(&t.axes[a].map, unit(rng));
-    }
+namespace {
+
+// Relative error of the table at each point where E ≥ 1e-6 (points (T, g, r, S)).
+SamplingStats sampling_stats(const NearLightTable &table, const std::vector<std::array<double, 4>> &at) {
     std::vector<double> err(at.size(), -1.0);
-    parallel_for(points, [&](int k) {
+    parallel_for(static_cast<int>(at.size()), [&](int k) {
         const auto &p = at[static_cast<size_t>(k)];
         const double exact = slut_nl_E(p[0], p[1], p[2], p[3]);
         if (exact >= 1e-6) err[static_cast<size_t>(k)] = std::fabs(table.E(p[0], p[1], p[2], p[3]) - exact) / exact;
@@ -150,12 +145,54 @@ SamplingStats measure_nearlight_sampling(const NearLightTable &table, int points
             s.max_rel = err[k];
             s.worst_u = at[k][0];
             s.worst_w = at[k][1];
+            for (int a = 0; a < 4; ++a) s.worst_at[a] = at[k][static_cast<size_t>(a)];
         }
     }
     s.p99_rel = percentile(kept, 0.99);
     s.median_rel = percentile(kept, 0.5);
     s.points = kept.size();
     return s;
+}
+
+} // namespace
+
+SamplingStats measure_nearlight_sampling(const NearLightTable &table, int points, uint64_t seed) {
+    const Table &t = table.table();
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<std::array<double, 4>> at(static_cast<size_t>(points));
+    for (auto &p : at) {
+        p[3] = std::numeric_limits<double>::infinity();
+        // The slab axis's one-parameter map is LOG in S: slut_param_from_unit gives log-uniform S.
+        for (size_t a = 0; a < t.axes.size(); ++a) p[a] = slut_param_from_unit(&t.axes[a].map, unit(rng));
+    }
+    return sampling_stats(table, at);
+}
+
+SamplingStats measure_nearlight_corners(const NearLightTable &table, int points, uint64_t seed) {
+    const Table &t = table.table();
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    auto pick = [&](const std::vector<double> &edges, const slut_axis &axis) {
+        if (unit(rng) < 0.5) return edges[std::uniform_int_distribution<size_t>(0, edges.size() - 1)(rng)];
+        return slut_param_from_unit(&axis, unit(rng));
+    };
+    const slut_axis &aT = t.axes[0].map, &ag = t.axes[1].map, &ar = t.axes[2].map;
+    std::vector<std::array<double, 4>> at(static_cast<size_t>(points));
+    for (auto &p : at) {
+        p[0] = pick({aT.min, aT.max}, aT);
+        p[1] = pick({ag.min, ag.min + 1e-9, 1.0}, ag);
+        p[2] = pick({0.0, 1e-12, ar.max}, ar);
+        p[3] = std::numeric_limits<double>::infinity();
+        if (table.thick_only()) continue;
+        const slut_axis &aS = t.axes[3].map;
+        std::vector<double> edges = {aS.min, aS.min * (1 + 1e-9), aS.max};
+        const double peak = -p[1] * p[0]; // t* = −g·T, the foot of the perpendicular from the light
+        for (double f : {1.0 - 1e-3, 1.0, 1.0 + 1e-3})
+            if (peak * f > aS.min && peak * f < aS.max) edges.push_back(peak * f);
+        p[3] = pick(edges, aS);
+    }
+    return sampling_stats(table, at);
 }
 
 } // namespace scatterlut

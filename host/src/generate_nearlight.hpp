@@ -38,7 +38,14 @@ Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const 
 // E at `nodes` random nodes against a finer, independent panel rule (refine = 2.5).
 double measure_nearlight_integration(const Table &table, int nodes, uint64_t seed);
 
-// Interpolated E at random unit coordinates where E ≥ 1e-6, against quadrature.
+// Interpolated E at random unit coordinates where E ≥ 1e-6, against quadrature (slut_nl_E).
+// In a 4-D table S is log-uniform in [S_min, S_max].
 SamplingStats measure_nearlight_sampling(const NearLightTable &table, int points, uint64_t seed);
+
+// The same at the hard corners: each parameter, with probability ½, takes one of its edge
+// values (T at both ends; g = g_min, g_min + 1e-9, 1; r = 0, 1e-12, r_max; S = S_min,
+// S_min·(1 + 1e-9), S_max, and S ≈ −g·T where the slab's far face cuts the 1/ĥ² peak) and
+// otherwise a random one as above.
+SamplingStats measure_nearlight_corners(const NearLightTable &table, int points, uint64_t seed);
 
 } // namespace scatterlut
