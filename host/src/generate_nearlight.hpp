@@ -19,7 +19,7 @@ struct NearLightPlan {
     double g_min = -0.99;               // ω·ω_l; below it (grazing view and light) E is integrated exactly
     int g_warp = SLUT_WARP_SQRT1P;      // sqrt1p (√(1+g)), or log1p from g_min with g_scale
     double g_scale = 0.0;
-    double r_max = 1e3, r_scale = 1e-5; // μ_l/μ_e, log1p axis including r = 0
+    double r_max = 1e3, r_scale = 1e-6; // μ_l/μ_e, log1p axis including r = 0
     double S_min = 1e-3, S_max = 20.0;  // σ_t·s, slab axis q (4-D only); outside: exact
     int n_T = 96, n_g = 80, n_r = 64, n_S = 17; // node counts; the defaults: docs/NEARLIGHT.md
     Storage storage = Storage::F32;
