@@ -155,6 +155,11 @@ TEST(NearLightTable, DefaultThickTableWithinOnePercent) {
     EXPECT_LE(t.accuracy.sampling_max_rel, 1e-2);
     EXPECT_GT(t.accuracy.sampling_points, 15000u);
     scatterlut::NearLightTable table(t);
+    // And at the hard corners (T at both ends, g = −0.99 and 1, r = 0, 1e-12 and r_max).
+    const scatterlut::SamplingStats corners = scatterlut::measure_nearlight_corners(table, 20000, 3);
+    EXPECT_LE(corners.max_rel, 1e-2) << "worst at T=" << corners.worst_at[0] << " g=" << corners.worst_at[1]
+                                     << " r=" << corners.worst_at[2];
+    EXPECT_GT(corners.points, 10000u);
     EXPECT_FALSE(table.covers(50.0, 0.9, 1e-4, std::numeric_limits<double>::infinity()));
     EXPECT_LE(slut_test::rel_err(table.E(50.0, 0.9, 1e-4, std::numeric_limits<double>::infinity()),
                                  2.015009384261607074432191e-6L), 1e-8); // off-table: exact (N_ref.json)

@@ -989,7 +989,8 @@ TEST(ShaderSources, ConstantsMatchTheCHeaders) {
     const std::vector<std::pair<std::string, int>> ids = {
         {"SLUT_WARP_LINEAR", SLUT_WARP_LINEAR}, {"SLUT_WARP_LOG", SLUT_WARP_LOG},
         {"SLUT_WARP_LOG1P", SLUT_WARP_LOG1P},   {"SLUT_WARP_ASINH_COT", SLUT_WARP_ASINH_COT},
-        {"SLUT_WARP_SQRT1P", SLUT_WARP_SQRT1P}, {"SLUT_GS_TABLE", SLUT_GS_TABLE},
+        {"SLUT_WARP_SQRT1P", SLUT_WARP_SQRT1P}, {"SLUT_WARP_LOGLIN", SLUT_WARP_LOGLIN},
+        {"SLUT_WARP_NL_QODDS", SLUT_WARP_NL_QODDS}, {"SLUT_GS_TABLE", SLUT_GS_TABLE},
         {"SLUT_GS_LARGE_U", SLUT_GS_LARGE_U},   {"SLUT_GS_SMALL_W", SLUT_GS_SMALL_W}};
     for (const auto &[name, value] : ids) {
         std::smatch m;
@@ -997,7 +998,7 @@ TEST(ShaderSources, ConstantsMatchTheCHeaders) {
         ASSERT_TRUE(std::regex_search(body, m, re)) << name << " is not defined in the shared body";
         EXPECT_EQ(std::stoi(m[1]), value) << name;
     }
-    EXPECT_EQ(SLUT_WARP_COUNT, 5) << "a new warp: add it to slut_warp_forward in the snippets";
+    EXPECT_EQ(SLUT_WARP_COUNT, 7) << "a new warp: add it to slut_warp_forward in the snippets";
     for (const std::string *text : {&glsl_snippet(), &hlsl_snippet()}) {
         for (const char *array : {"slut_gl16_x", "slut_gl16_w"}) {
             const size_t at = text->find(std::string(array) + "[8] =");

@@ -104,6 +104,10 @@ static const float slut_gl16_w[8] = {
 #define SLUT_WARP_LOG1P 2
 #define SLUT_WARP_ASINH_COT 3
 #define SLUT_WARP_SQRT1P 4
+#define SLUT_WARP_LOGLIN 5
+// The near-light slab axis: its unit coordinate also needs T and g (slut_nl_unit_from_S in
+// kernels/slut_nearlight.h); as a one-parameter warp it is log in S, exact at g = 1 only.
+#define SLUT_WARP_NL_QODDS 6
 // Which representation serves Gs(u, w) (kernels/slut_airlight.h, slut_gs_regime).
 #define SLUT_GS_TABLE 0
 #define SLUT_GS_LARGE_U 1
@@ -215,6 +219,8 @@ float slut_warp_forward(int warp, float p, float p_min, float scale) {
         return log(s / (1.0 + c));
     }
     if (warp == SLUT_WARP_SQRT1P) return sqrt(max(1.0 + p, 0.0));
+    if (warp == SLUT_WARP_LOGLIN) return log(p) + p / scale;
+    if (warp == SLUT_WARP_NL_QODDS) return log(p);
     return p;
 }
 
