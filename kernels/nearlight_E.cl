@@ -1,9 +1,11 @@
-/* scatterlut — near-light table kernel: ln E(T, g, r[, S]) at every node.
+/* scatterlut — near-light table kernel: ln E(T, g, r) (thick) or ln(E/B)(T, g, r, S) at every node.
  *
  * One work-item per (r group of up to SLUT_NL_MAX_LANES nodes, g node, T node × S node):
  * the r values of a group share one panel mesh (slut_nl_E_lanes). Output layout, axis 0
  * fastest: index = ((iS·n_r + ir)·n_g + ig)·n_T + iT (the file layout of axes T, g, r, S).
- * A 3-D (thick) table passes S_count = 1 and S_min = S_max = +inf.
+ * A 3-D (thick) table passes S_count = 1 and S_min = S_max = +inf and gets ln E; a 4-D table
+ * gets ln(E/B), B = slut_nl_E_base (the value base), with S at node iS from its slab axis
+ * (slut_nl_S_node: the q map of slut_nearlight.h for warp SLUT_WARP_NL_QODDS).
  */
 #include "slut_axes.h"
 #include "slut_nearlight.h"
@@ -28,11 +30,13 @@ __kernel void nearlight_ln_E(__global double *out,
     aS.min = S_min; aS.max = S_max; aS.scale = S_scale; aS.warp = S_warp; aS.count = S_count;
     double T = slut_axis_node(&aT, iT);
     double g = slut_axis_node(&ag, ig);
-    double S = (S_count == 1) ? S_min : slut_axis_node(&aS, iS);
+    double S = (S_count == 1) ? S_min : slut_nl_S_node(&aS, T, g, iS);
     int lanes = min(SLUT_NL_MAX_LANES, r_count - ir0);
     double r[SLUT_NL_MAX_LANES], E[SLUT_NL_MAX_LANES];
     for (int l = 0; l < lanes; ++l) r[l] = slut_axis_node(&ar, ir0 + l);
     slut_nl_E_lanes(T, g, S, r, lanes, E, refine);
-    for (int l = 0; l < lanes; ++l)
-        out[(((size_t)iS * r_count + (size_t)(ir0 + l)) * g_count + ig) * T_count + iT] = log(E[l]);
+    for (int l = 0; l < lanes; ++l) {
+        double base = (S_count == 1) ? 1.0 : slut_nl_E_base(T, r[l], S);
+        out[(((size_t)iS * r_count + (size_t)(ir0 + l)) * g_count + ig) * T_count + iT] = log(E[l] / base);
+    }
 }

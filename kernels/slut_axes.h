@@ -21,6 +21,11 @@
  *                                                         p → 0, linear in v near v = 0)
  *   SQRT1P    g(p) = sqrt(1 + p),    p ∈ [−1, 1]        (follows √(1+g), the width of a
  *                                                         peak as g → −1)
+ *   LOGLIN    g(p) = ln p + p/s,     p > 0, s = scale    (log spacing below s, linear
+ *                                                         spacing s·Δ above: both ends of T)
+ *   NL_QODDS  the near-light slab axis (E4's axis "q"): its unit coordinate depends on T
+ *             and g as well, so only slut_nearlight.h (slut_nl_unit_from_S) computes it.
+ *             The one-parameter maps below treat it as LOG in S, which it equals at g = 1.
  *
  * Compiled three times: as OpenCL C (generator), as C++ (runtime sampler, validator) and,
  * the part between SLUT_SHADER_BEGIN and SLUT_SHADER_END, as GLSL and HLSL in float
@@ -39,7 +44,9 @@
 #define SLUT_WARP_LOG1P 2
 #define SLUT_WARP_ASINH_COT 3
 #define SLUT_WARP_SQRT1P 4
-#define SLUT_WARP_COUNT 5
+#define SLUT_WARP_LOGLIN 5
+#define SLUT_WARP_NL_QODDS 6
+#define SLUT_WARP_COUNT 7
 
 /* Warp g(p). */
 SLUT_FN double slut_warp_forward(int warp, double p, double p_min, double scale) {
@@ -52,8 +59,28 @@ SLUT_FN double slut_warp_forward(int warp, double p, double p_min, double scale)
         return -log((1.0 + cos(p)) / sin(p));
     }
     case SLUT_WARP_SQRT1P: return sqrt(fmax(1.0 + p, 0.0));
+    case SLUT_WARP_LOGLIN: return log(p) + p / scale;
+    case SLUT_WARP_NL_QODDS: return log(p);
     default: return p;
     }
+}
+
+/* Inverse of LOGLIN: the root p > 0 of f(p) = ln p + p/s − y. f is increasing and concave,
+ * so its tangent lies above it: one Newton step from any p0 > 0 lands at or below the root,
+ * and from below the steps increase monotonically to it (quadratically near it). The start,
+ * p0 = e^y for y ≤ ln s + 1 and s·(y − ln s) otherwise, follows the two asymptotes (log and
+ * linear). Stops at a relative step ≤ 4e-16; round trip tested in tests/test_nearlight_axes. */
+SLUT_FN double slut_loglin_inverse(double y, double s) {
+    double p = (y <= log(s) + 1.0) ? exp(y) : s * (y - log(s));
+    for (int k = 0; k < 60; ++k) {
+        double f = log(p) + p / s - y;
+        double next = p - f / (1.0 / p + 1.0 / s);
+        if (!(next > 0.0)) next = 0.5 * p; /* cannot happen from below the root; never leave p > 0 */
+        double step = fabs(next - p);
+        p = next;
+        if (step <= 4e-16 * p) break;
+    }
+    return p;
 }
 
 /* Inverse warp g⁻¹(y). */
@@ -66,6 +93,8 @@ SLUT_FN double slut_warp_inverse(int warp, double y, double p_min, double scale)
         return atan2(1.0, sinh(-y));
     }
     case SLUT_WARP_SQRT1P: return y * y - 1.0;
+    case SLUT_WARP_LOGLIN: return slut_loglin_inverse(y, scale);
+    case SLUT_WARP_NL_QODDS: return exp(y);
     default: return y;
     }
 }

@@ -25,6 +25,7 @@
 #define SLUT_NEARLIGHT_H
 
 #include "slut_compat.h"
+#include "slut_axes.h"     /* slut_axis: the slab axis of the 4-D table (below) */
 #include "slut_airlight.h" /* slut_gl16_x / slut_gl16_w: the project's 16-point Gauss–Legendre rule */
 
 /* ------------------------------------------------------------------ small helpers */
@@ -294,6 +295,79 @@ SLUT_FN double slut_nl_N(double T, double g, double r, double S) {
     return slut_nl_E(T, g, r, S) * H;
 }
 
+/* ------------------------------------------------------------------ the 4-D table's slab axis */
+
+/* The finite-thickness table E(T, g, r, S) has a ridge that no separable axis in S follows:
+ * for g < 0 the ray passes the light's foot point at t* = −T g, where 1/ĥ² peaks with width
+ * w = T√(1 − g²), so E(S) (the ĥ⁻²-weighted mean of the attenuation over [0, S]) changes
+ * within |S − t*| ≲ w and is frozen after it (a log S axis put 0.4 e-folds of S per cell
+ * there, ~3 cells per peak width T√(1−g²)/t* = 0.14 at g = −0.99: 14.6 % error).
+ *
+ * The weight fraction. q(T, g, S) = H(T, g, S)/H(T, g, ∞) ∈ [0, 1]: the share of the inverse-
+ * square weight inside the slab. In angles (slut_nl_inv_square_integral: H = Δφ/w), q = φ/θ
+ * with θ = acos g the angle at the light between the directions to the entry point and to
+ * the ray's far end, φ the angle subtended by [0, S]. In q the mean is a running average,
+ *   E(q) = (1/q) ∫_0^q a(t(q')) dq',
+ * and the peak is where q rises fastest (t changes little there), so in q it is no feature.
+ * Near q → 0 (thin slab, S ≪ T) q ∝ S; near q → 1, 1 − q ∝ 1/S; both ends need log spacing
+ * (in thin slabs E changes at S ~ r and S ~ T r; at S ≫ T the attenuation e^{−t} varies on
+ * a scale of 1 in t). The odds do both:
+ *   σ(T, g, S) = T·θ/sin θ · q/(1 − q) = T·H∞·I_in/I_out,     (T·H∞ = θ/sin θ in units of 1/T)
+ * I_in = ∫_0^S ĥ⁻², I_out = ∫_S^∞ ĥ⁻² (both in units of 1/T). σ is the straightened depth:
+ * σ ≈ S for S ≪ T, σ ≈ S·(θ/sin θ)² for S ≫ T, σ = S exactly at g = 1 (θ → 0: q/(1−q) = S/T),
+ * and ln σ is linear in q's logit through the peak, where a log S axis had 0.28 e-folds
+ * (g = −0.99) for what now takes ln (θ/sin θ)² = 6.1.
+ *
+ * The axis (warp SLUT_WARP_NL_QODDS, axis name "q", min = S_min, max = S_max > 0): at each
+ * (T, g) the unit coordinate is ln σ normalised between the slab thicknesses S_min and S_max,
+ *   x = ln(σ(S)/σ(S_min)) / ln(σ(S_max)/σ(S_min)),
+ * so every (T, g) gets all the nodes for exactly [S_min, S_max]; nodes at x_i = i/(count − 1)
+ * (slut_nl_S_node), texel centres as every axis (slut_texcoord_from_unit). At g = 1 this is
+ * the LOG warp in S. Inverse: q/(1 − q) = σ/(T·T H∞) = ρ, and by the law of sines in the
+ * triangle light–entry point–P(S), S/T = sin(qθ)/sin((1 − q)θ) = ρ·sinc(qθ)/sinc((1 − q)θ). */
+
+/* sin(x)/x (1 at x = 0). */
+SLUT_FN double slut_nl_sinc(double x) { return (x == 0.0) ? 1.0 : sin(x) / x; }
+
+/* σ(T, g, S) of the derivation above: S > 0 finite, T > 0, g ∈ [−1 + ε, 1]. Robust at g = 1
+ * (no division by sin θ: I_in/I_out and T·H∞ come from slut_nl_inv_square_integral). */
+SLUT_FN double slut_nl_depth_odds(double T, double g, double S) {
+    double sg = slut_nl_sin_from_cos(g);
+    double tau = S / T, d = tau + g;
+    double inside = slut_nl_inv_square_integral(tau, 1.0, g, sg);
+    double outside = slut_nl_inv_square_integral(SLUT_HUGE_VAL, d * d + sg * sg, d, sg);
+    return T * slut_nl_H_scaled(g, SLUT_HUGE_VAL) * (inside / outside);
+}
+
+/* The inverse: S with slut_nl_depth_odds(T, g, S) = sigma (> 0). */
+SLUT_FN double slut_nl_S_from_depth_odds(double T, double g, double sigma) {
+    double rho = sigma / (T * slut_nl_H_scaled(g, SLUT_HUGE_VAL)); /* q/(1 − q) */
+    double q = rho / (1.0 + rho), q_out = 1.0 / (1.0 + rho);      /* q and 1 − q, both to full precision */
+    double theta = atan2(slut_nl_sin_from_cos(g), g);
+    return T * rho * slut_nl_sinc(q * theta) / slut_nl_sinc(q_out * theta);
+}
+
+/* S → unit coordinate x on the slab axis a (SLUT_WARP_NL_QODDS) at (T, g); not clamped. */
+SLUT_FN double slut_nl_unit_from_S(const slut_axis *a, double T, double g, double S) {
+    double lo = log(slut_nl_depth_odds(T, g, a->min)), hi = log(slut_nl_depth_odds(T, g, a->max));
+    return (log(slut_nl_depth_odds(T, g, S)) - lo) / (hi - lo);
+}
+
+/* Unit coordinate x → S on the slab axis a at (T, g); the ends exact. */
+SLUT_FN double slut_nl_S_from_unit(const slut_axis *a, double T, double g, double x) {
+    if (x <= 0.0) return a->min;
+    if (x >= 1.0) return a->max;
+    double lo = log(slut_nl_depth_odds(T, g, a->min)), hi = log(slut_nl_depth_odds(T, g, a->max));
+    return slut_nl_S_from_depth_odds(T, g, exp(lo + x * (hi - lo)));
+}
+
+/* S of node i of a slab axis at (T, g): the q map for SLUT_WARP_NL_QODDS, else the axis's own
+ * one-parameter warp (older layouts, tests). */
+SLUT_FN double slut_nl_S_node(const slut_axis *a, double T, double g, int i) {
+    if (a->warp != SLUT_WARP_NL_QODDS) return slut_axis_node(a, i);
+    return slut_nl_S_from_unit(a, T, g, (double)i / (double)(a->count - 1));
+}
+
 /* ------------------------------------------------------------------ parameters from geometry */
 
 #define SLUT_NL_OK 0            /* parameters valid */
@@ -445,6 +519,24 @@ SLUT_FN double slut_nl_N_thin(double T, double g, double r, double S) {
     double E = slut_nl_E_thin(r, S);
     if (!SLUT_ISFINITE(H)) return (E > 0.0) ? SLUT_HUGE_VAL : 0.0;
     return H * E;
+}
+
+/* ------------------------------------------------------------------ the 4-D table's value base */
+
+/* B(T, r, S): a closed-form guess of E for finite slabs; the 4-D table stores ln(E/B).
+ *   B = e^{−T} + (1 − e^{−T}) · E_thin(r, S_eff),   S_eff = S T/(S + T)
+ * Why: in a thin slab the light path inside, ĥ t/(t + T r) ≈ T t/(t + T r), grows like t/r
+ * (the distant light: E_thin's transition at S ~ r) and saturates at T (the floor e^{−T}),
+ * so E ≈ e^{−T}·c + r/S: a sum of two smooth terms whose logarithm has a sharp crossover
+ * where r e^{T} ~ S (width ~1 in T, ln r and ln S: 4.7 % trilinear error at T ≈ 14 with
+ * ~1.3 optical depths per T cell). B has the same crossover, so ln(E/B) is smooth there.
+ * S_eff caps the averaging length at ~T, where the ĥ⁻² weight ends in thick slabs (E_thin
+ * would fall like 1/S while E stays). B is not an approximation anyone should use: it is an
+ * encoding, exact by construction (E = B·e^{stored}). Measured: docs/NEARLIGHT.md.
+ * B ≥ e^{−T} > 0 for T ≤ 700; B = 1 at T = 0. */
+SLUT_FN double slut_nl_E_base(double T, double r, double S) {
+    double S_eff = (S > 1e300) ? T : S * (T / (S + T));
+    return exp(-T) - expm1(-T) * slut_nl_E_thin(r, S_eff);
 }
 
 #endif /* SLUT_NEARLIGHT_H */

@@ -314,7 +314,8 @@ TEST(TableNames, RoundTrip) {
         ASSERT_TRUE(encoding_from_string(to_string(e), &back));
         EXPECT_EQ(back, e);
     }
-    const char *names[] = {"linear", "log", "log1p", "asinh_cot", "sqrt1p"};
+    const char *names[] = {"linear", "log", "log1p", "asinh_cot", "sqrt1p", "loglin", "nl_qodds"};
+    static_assert(sizeof(names) / sizeof(names[0]) == SLUT_WARP_COUNT, "one name per warp id");
     for (int w = 0; w < SLUT_WARP_COUNT; ++w) {
         EXPECT_STREQ(warp_name(w), names[w]);
         int back = -1;

@@ -601,7 +601,8 @@ TEST(ShaderSources, ConstantsMatchTheCHeaders) {
     const std::vector<std::pair<std::string, int>> ids = {
         {"SLUT_WARP_LINEAR", SLUT_WARP_LINEAR}, {"SLUT_WARP_LOG", SLUT_WARP_LOG},
         {"SLUT_WARP_LOG1P", SLUT_WARP_LOG1P},   {"SLUT_WARP_ASINH_COT", SLUT_WARP_ASINH_COT},
-        {"SLUT_WARP_SQRT1P", SLUT_WARP_SQRT1P}, {"SLUT_GS_TABLE", SLUT_GS_TABLE},
+        {"SLUT_WARP_SQRT1P", SLUT_WARP_SQRT1P}, {"SLUT_WARP_LOGLIN", SLUT_WARP_LOGLIN},
+        {"SLUT_WARP_NL_QODDS", SLUT_WARP_NL_QODDS}, {"SLUT_GS_TABLE", SLUT_GS_TABLE},
         {"SLUT_GS_LARGE_U", SLUT_GS_LARGE_U},   {"SLUT_GS_SMALL_W", SLUT_GS_SMALL_W}};
     for (const auto &[name, value] : ids) {
         std::smatch m;

@@ -124,11 +124,14 @@ TEST(Validate, InspectTextAndJson) {
         EXPECT_EQ(doc.at("kind"), "near_light_E4");
         ASSERT_EQ(doc.at("axes").size(), 4u);
         EXPECT_EQ(doc.at("axes")[0].at("name"), "T");
-        EXPECT_EQ(doc.at("axes")[3].at("name"), "S");
+        EXPECT_EQ(doc.at("axes")[3].at("name"), "q"); // the slab axis (docs/NEARLIGHT.md)
+        EXPECT_EQ(doc.at("axes")[3].at("warp"), "nl_qodds");
+        EXPECT_EQ(doc.at("channels")[0].at("name"), "ln_E_over_B");
         EXPECT_EQ(doc.at("channels")[0].at("encoding"), "log");
+        // E/B: positive and finite (E ∈ (0, 1], B ≥ e^{−T} ≥ e^{−20}).
         const double lo = doc.at("channels")[0].at("decoded_min"), hi = doc.at("channels")[0].at("decoded_max");
         EXPECT_GT(lo, 0.0);
-        EXPECT_LE(hi, 1.0 + 1e-6);
+        EXPECT_LE(hi, std::exp(20.0));
         EXPECT_GE(doc.at("accuracy").at("sampling_max_rel").get<double>(), 0.0);
     }
 }

@@ -27,6 +27,7 @@ struct SamplingStats {
     double max_rel = 0, p99_rel = 0, median_rel = 0;
     uint64_t points = 0;
     double worst_u = 0, worst_w = 0; // where max_rel occurs
+    double worst_at[4] = {0, 0, 0, 0}; // near-light tables: (T, g, r, S) of max_rel
 };
 
 // A table with the plan's axes and no values yet.

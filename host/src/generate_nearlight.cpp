@@ -19,22 +19,19 @@ extern "C" {
 namespace scatterlut {
 namespace {
 
-double S_of(const Table &t, const size_t *node) {
-    return t.axes.size() == 4 ? slut_axis_node(&t.axes[3].map, static_cast<int>(node[3]))
-                              : std::numeric_limits<double>::infinity();
-}
-
 } // namespace
 
 NearLightPlan default_near_light_plan(bool finite_thickness) {
     NearLightPlan plan;
     plan.finite_thickness = finite_thickness;
     if (finite_thickness) {
-        plan.n_T = 48;
-        plan.n_g = 40;
-        plan.n_r = 48;
-        plan.n_S = 24;
+        plan.n_T = 80;
+        plan.n_g = 32;
+        plan.n_r = 64;
+        plan.n_S = 48;
         plan.r_scale = 1e-9;
+        plan.g_warp = SLUT_WARP_LOG1P;
+        plan.g_scale = 0.02;
     }
     return plan;
 }
@@ -44,17 +41,23 @@ Table make_nearlight_table_layout(const NearLightPlan &plan) {
     t.kind = plan.finite_thickness ? kKindNearLightE4 : kKindNearLightE3;
     t.quantity_version = kNearLightEQuantityVersion;
     t.axes.push_back(make_axis("T", "optical distance sigma_t*l from the entry point to the light", plan.T_min,
-                               plan.T_max, plan.T_scale, SLUT_WARP_LOG1P, plan.n_T));
+                               plan.T_max, plan.T_scale, SLUT_WARP_LOGLIN, plan.n_T));
     t.axes.push_back(make_axis("g", "cosine between the eye direction and the direction to the light", plan.g_min,
-                               1.0, 0.0, SLUT_WARP_SQRT1P, plan.n_g));
+                               1.0, plan.g_scale, plan.g_warp, plan.n_g));
     t.axes.push_back(make_axis("r", "mu_l/mu_e, ratio of the light's and the eye's cosines to the normal", 0.0,
                                plan.r_max, plan.r_scale, SLUT_WARP_LOG1P, plan.n_r));
     if (plan.finite_thickness)
-        t.axes.push_back(make_axis("S", "optical thickness sigma_t*s of the path inside", plan.S_min, plan.S_max,
-                                   0.0, SLUT_WARP_LOG, plan.n_S));
+        t.axes.push_back(make_axis("q",
+                                   "slab S = sigma_t*s in [min, max] by its share q = H(S)/H(inf) of the inverse-square "
+                                   "weight: unit coordinate ln(sigma(S)/sigma(min))/ln(sigma(max)/sigma(min)) at each "
+                                   "(T, g), sigma = T*(acos g/sqrt(1-g^2))*q/(1-q) (slut_nl_unit_from_S)",
+                                   plan.S_min, plan.S_max, 0.0, SLUT_WARP_NL_QODDS, plan.n_S));
     Channel c;
-    c.name = "ln_E";
-    c.meaning = "ln of E = N/H, the inverse-square-weighted mean attenuation, in (0,1]";
+    c.name = plan.finite_thickness ? "ln_E_over_B" : "ln_E";
+    c.meaning = plan.finite_thickness
+                    ? "ln(E/B): E = N/H, the inverse-square-weighted mean attenuation in (0,1], over the closed-form "
+                      "base B = exp(-T) + (1-exp(-T))*E_thin(r, S*T/(S+T)) (slut_nl_E_base)"
+                    : "ln of E = N/H, the inverse-square-weighted mean attenuation, in (0,1]";
     c.encoding = Encoding::Log;
     t.channels = {c};
     t.storage = plan.storage;
@@ -97,11 +100,14 @@ Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const 
     t.accuracy.sampling_p99_rel = s.p99_rel;
     t.accuracy.sampling_median_rel = s.median_rel;
     t.accuracy.sampling_points = s.points;
-    t.accuracy.sampling_domain = "E at uniform random unit coordinates where E >= 1e-6";
+    t.accuracy.sampling_domain = plan.finite_thickness
+                                     ? "E at uniform random unit coordinates of T, g, r and log-uniform S where E >= 1e-6"
+                                     : "E at uniform random unit coordinates where E >= 1e-6";
     return t;
 }
 
 double measure_nearlight_integration(const Table &table, int nodes, uint64_t seed) {
+    const NearLightTable nl(table);
     std::mt19937_64 rng(seed);
     const size_t n_axes = table.axes.size();
     std::vector<std::array<size_t, 4>> picks(static_cast<size_t>(nodes));
@@ -111,28 +117,21 @@ double measure_nearlight_integration(const Table &table, int nodes, uint64_t see
     std::vector<double> err(picks.size());
     parallel_for(nodes, [&](int k) {
         const auto &p = picks[static_cast<size_t>(k)];
-        const double T = slut_axis_node(&table.axes[0].map, static_cast<int>(p[0]));
-        const double g = slut_axis_node(&table.axes[1].map, static_cast<int>(p[1]));
-        const double r = slut_axis_node(&table.axes[2].map, static_cast<int>(p[2]));
+        double at[4];
+        nl.node_params(p.data(), at);
         double E_ref;
-        slut_nl_E_lanes(T, g, S_of(table, p.data()), &r, 1, &E_ref, 2.5);
-        const double stored = std::exp(table.values[table.index(p.data())]);
-        err[static_cast<size_t>(k)] = std::fabs(stored - E_ref) / E_ref;
+        slut_nl_E_lanes(at[0], at[1], at[3], &at[2], 1, &E_ref, 2.5);
+        err[static_cast<size_t>(k)] = std::fabs(nl.node_E(p.data()) - E_ref) / E_ref;
     });
     return *std::max_element(err.begin(), err.end());
 }
 
-SamplingStats measure_nearlight_sampling(const NearLightTable &table, int points, uint64_t seed) {
-    const Table &t = table.table();
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    std::vector<std::array<double, 4>> at(static_cast<size_t>(points));
-    for (auto &p : at) {
-        p[3] = std::numeric_limits<double>::infinity();
-        for (size_t a = 0; a < t.axes.size(); ++a) p[a] = slut_param_from_unit(&t.axes[a].map, unit(rng));
-    }
+namespace {
+
+// Relative error of the table at each point where E ≥ 1e-6 (points (T, g, r, S)).
+SamplingStats sampling_stats(const NearLightTable &table, const std::vector<std::array<double, 4>> &at) {
     std::vector<double> err(at.size(), -1.0);
-    parallel_for(points, [&](int k) {
+    parallel_for(static_cast<int>(at.size()), [&](int k) {
         const auto &p = at[static_cast<size_t>(k)];
         const double exact = slut_nl_E(p[0], p[1], p[2], p[3]);
         if (exact >= 1e-6) err[static_cast<size_t>(k)] = std::fabs(table.E(p[0], p[1], p[2], p[3]) - exact) / exact;
@@ -146,12 +145,54 @@ SamplingStats measure_nearlight_sampling(const NearLightTable &table, int points
             s.max_rel = err[k];
             s.worst_u = at[k][0];
             s.worst_w = at[k][1];
+            for (int a = 0; a < 4; ++a) s.worst_at[a] = at[k][static_cast<size_t>(a)];
         }
     }
     s.p99_rel = percentile(kept, 0.99);
     s.median_rel = percentile(kept, 0.5);
     s.points = kept.size();
     return s;
+}
+
+} // namespace
+
+SamplingStats measure_nearlight_sampling(const NearLightTable &table, int points, uint64_t seed) {
+    const Table &t = table.table();
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<std::array<double, 4>> at(static_cast<size_t>(points));
+    for (auto &p : at) {
+        p[3] = std::numeric_limits<double>::infinity();
+        // The slab axis's one-parameter map is LOG in S: slut_param_from_unit gives log-uniform S.
+        for (size_t a = 0; a < t.axes.size(); ++a) p[a] = slut_param_from_unit(&t.axes[a].map, unit(rng));
+    }
+    return sampling_stats(table, at);
+}
+
+SamplingStats measure_nearlight_corners(const NearLightTable &table, int points, uint64_t seed) {
+    const Table &t = table.table();
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    auto pick = [&](const std::vector<double> &edges, const slut_axis &axis) {
+        if (unit(rng) < 0.5) return edges[std::uniform_int_distribution<size_t>(0, edges.size() - 1)(rng)];
+        return slut_param_from_unit(&axis, unit(rng));
+    };
+    const slut_axis &aT = t.axes[0].map, &ag = t.axes[1].map, &ar = t.axes[2].map;
+    std::vector<std::array<double, 4>> at(static_cast<size_t>(points));
+    for (auto &p : at) {
+        p[0] = pick({aT.min, aT.max}, aT);
+        p[1] = pick({ag.min, ag.min + 1e-9, 1.0}, ag);
+        p[2] = pick({0.0, 1e-12, ar.max}, ar);
+        p[3] = std::numeric_limits<double>::infinity();
+        if (table.thick_only()) continue;
+        const slut_axis &aS = t.axes[3].map;
+        std::vector<double> edges = {aS.min, aS.min * (1 + 1e-9), aS.max};
+        const double peak = -p[1] * p[0]; // t* = −g·T, the foot of the perpendicular from the light
+        for (double f : {1.0 - 1e-3, 1.0, 1.0 + 1e-3})
+            if (peak * f > aS.min && peak * f < aS.max) edges.push_back(peak * f);
+        p[3] = pick(edges, aS);
+    }
+    return sampling_stats(table, at);
 }
 
 } // namespace scatterlut

@@ -13,18 +13,21 @@
 namespace scatterlut {
 
 struct NearLightPlan {
-    bool finite_thickness = false; // false: 3-D (S = ∞); true: 4-D with an S axis
-    double T_min = 1e-3, T_max = 20.0;  // σ_t·l; log1p axis: log below T_scale, linear above,
-    double T_scale = 0.3;               // where ln E(r = 0) ~ −T falls linearly
+    bool finite_thickness = false; // false: 3-D (S = ∞); true: 4-D with a slab axis q
+    double T_min = 1e-3, T_max = 20.0;  // σ_t·l; loglin axis ln T + T/T_scale: log spacing below
+    double T_scale = 1.0;               // T_scale, linear above, where ln E(r = 0) ~ −T falls linearly
     double g_min = -0.99;               // ω·ω_l; below it (grazing view and light) E is integrated exactly
-    double r_max = 1e3, r_scale = 1e-5; // μ_l/μ_e, log1p axis including r = 0
-    double S_min = 1e-3, S_max = 20.0;  // σ_t·s, log axis (4-D only); thinner slabs: exact
-    int n_T = 96, n_g = 80, n_r = 64, n_S = 17; // E3: max 0.9 % where E ≥ 1e-6 (docs/NEARLIGHT.md)
+    int g_warp = SLUT_WARP_SQRT1P;      // sqrt1p (√(1+g)), or log1p from g_min with g_scale
+    double g_scale = 0.0;
+    double r_max = 1e3, r_scale = 1e-6; // μ_l/μ_e, log1p axis including r = 0
+    double S_min = 1e-3, S_max = 20.0;  // σ_t·s, slab axis q (4-D only); outside: exact
+    int n_T = 96, n_g = 80, n_r = 64, n_S = 17; // node counts; the defaults: docs/NEARLIGHT.md
     Storage storage = Storage::F32;
 };
 
 // The default plans: the 3-D table (S = ∞), and the 4-D one with r resolved down to 1e-9,
-// where thin slabs still see the light through their surface layer (docs/NEARLIGHT.md).
+// where thin slabs still see the light through their surface layer, and g in log1p spacing
+// from g_min (docs/NEARLIGHT.md).
 NearLightPlan default_near_light_plan(bool finite_thickness);
 
 Table make_nearlight_table_layout(const NearLightPlan &plan);
@@ -35,7 +38,14 @@ Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const 
 // E at `nodes` random nodes against a finer, independent panel rule (refine = 2.5).
 double measure_nearlight_integration(const Table &table, int nodes, uint64_t seed);
 
-// Interpolated E at random unit coordinates where E ≥ 1e-6, against quadrature.
+// Interpolated E at random unit coordinates where E ≥ 1e-6, against quadrature (slut_nl_E).
+// In a 4-D table S is log-uniform in [S_min, S_max].
 SamplingStats measure_nearlight_sampling(const NearLightTable &table, int points, uint64_t seed);
+
+// The same at the hard corners: each parameter, with probability ½, takes one of its edge
+// values (T at both ends; g = g_min, g_min + 1e-9, 1; r = 0, 1e-12, r_max; S = S_min,
+// S_min·(1 + 1e-9), S_max, and S ≈ −g·T where the slab's far face cuts the 1/ĥ² peak) and
+// otherwise a random one as above.
+SamplingStats measure_nearlight_corners(const NearLightTable &table, int points, uint64_t seed);
 
 } // namespace scatterlut

@@ -106,22 +106,23 @@ std::vector<std::array<size_t, kMaxAxes>> pick_nodes(const Table &t, int nodes) 
 }
 
 // Max relative error of the stored, decoded channel-0 values at the picked nodes against
-// a finer quadrature than the generator's production rule.
-double node_error(const Table &t, const std::vector<std::array<size_t, kMaxAxes>> &picks) {
-    const bool airlight = t.kind == kKindAirlightF;
+// a finer quadrature than the generator's production rule. Near-light tables (nl non-null)
+// give their nodes' parameters and decoded E themselves (the slab axis and value base).
+double node_error(const Table &t, const NearLightTable *nl, const std::vector<std::array<size_t, kMaxAxes>> &picks) {
     std::vector<double> err(picks.size());
     parallel_for(static_cast<int>(picks.size()), [&](int k) {
         const auto &p = picks[static_cast<size_t>(k)];
         double param[kMaxAxes];
-        for (size_t a = 0; a < t.axes.size(); ++a) param[a] = slut_axis_node(&t.axes[a].map, static_cast<int>(p[a]));
-        double reference;
-        if (airlight) {
+        double reference, stored;
+        if (!nl) {
+            for (size_t a = 0; a < t.axes.size(); ++a) param[a] = slut_axis_node(&t.axes[a].map, static_cast<int>(p[a]));
             reference = slut_gs_quadrature(param[0], param[1], 3.0);
+            stored = decode(t.channels[0].encoding, t.values[t.index(p.data())]);
         } else {
-            const double S = t.axes.size() == 4 ? param[3] : std::numeric_limits<double>::infinity();
-            slut_nl_E_lanes(param[0], param[1], S, &param[2], 1, &reference, 2.5);
+            nl->node_params(p.data(), param); // T, g, r, S
+            slut_nl_E_lanes(param[0], param[1], param[3], &param[2], 1, &reference, 2.5);
+            stored = nl->node_E(p.data());
         }
-        const double stored = decode(t.channels[0].encoding, t.values[t.index(p.data())]);
         err[static_cast<size_t>(k)] = std::fabs(stored - reference) / reference;
     });
     double worst = 0;
@@ -169,7 +170,7 @@ FileReport validate_file(const std::string &path, const ValidateOptions &opt) {
     nodes.name = "nodes";
     const auto picks = pick_nodes(t, opt.nodes);
     nodes.count = picks.size();
-    nodes.measured = node_error(t, picks);
+    nodes.measured = node_error(t, nl.get(), picks);
     nodes.limit = std::max(a.integration_max_rel, a.storage_max_rel) * (1 + kNodeMargin) + a.storage_max_rel + kNodeFloor;
     nodes.pass = nodes.measured <= nodes.limit;
     r.checks.push_back(nodes);

@@ -100,15 +100,21 @@ double near_light_radiance_distant(const NearLightQuery &q) {
 NearLightTable::NearLightTable(Table table) : table_(std::move(table)) {
     const bool e3 = table_.kind == kKindNearLightE3, e4 = table_.kind == kKindNearLightE4;
     require(e3 || e4, "not a near-light table (kind '" + table_.kind + "')");
-    require(table_.quantity_version == kNearLightEQuantityVersion, "near-light table quantity version " +
-                                                                     std::to_string(table_.quantity_version) +
-                                                                     " is not the one this library knows");
+    require(table_.quantity_version == kNearLightEQuantityVersion,
+            "near-light table quantity version " + std::to_string(table_.quantity_version) + " is not the one (" +
+                std::to_string(kNearLightEQuantityVersion) + ") this library knows: regenerate the table");
     require(table_.axes.size() == (e3 ? 3u : 4u), "near-light table has the wrong number of axes");
     require(table_.axes[0].name == "T" && table_.axes[1].name == "g" && table_.axes[2].name == "r" &&
-                (e3 || table_.axes[3].name == "S"),
-            "near-light table axes must be (T, g, r[, S])");
-    require(!table_.channels.empty() && table_.channels[0].name == "ln_E" && table_.channels[0].encoding == Encoding::Log,
-            "near-light table channel 0 must be ln_E (log encoded)");
+                (e3 || table_.axes[3].name == "q"),
+            "near-light table axes must be (T, g, r) or (T, g, r, q)");
+    for (size_t a = 0; a < 3; ++a)
+        require(table_.axes[a].map.warp != SLUT_WARP_NL_QODDS, "near-light axis " + table_.axes[a].name +
+                                                                   " cannot use the slab warp 'nl_qodds'");
+    require(e3 || table_.axes[3].map.warp == SLUT_WARP_NL_QODDS, "near-light axis q must use the warp 'nl_qodds'");
+    const char *channel = e3 ? "ln_E" : "ln_E_over_B";
+    require(!table_.channels.empty() && table_.channels[0].name == channel &&
+                table_.channels[0].encoding == Encoding::Log,
+            std::string("near-light table channel 0 must be ") + channel + " (log encoded)");
     table_.check_consistent();
 }
 
@@ -121,8 +127,24 @@ bool NearLightTable::covers(double T, double g, double r, double S) const {
 
 double NearLightTable::E(double T, double g, double r, double S) const {
     if (!covers(T, g, r, S)) return T > 0.0 ? slut_nl_E(T, g, r, S) : 1.0;
-    const double params[4] = {T, g, r, S};
-    return sample(table_, params, 0);
+    double unit[4];
+    for (size_t a = 0; a < 3; ++a) unit[a] = slut_unit_from_param(&table_.axes[a].map, a == 0 ? T : a == 1 ? g : r);
+    if (thick_only()) return std::exp(sample_encoded_at_unit(table_, unit, 0));
+    unit[3] = slut_nl_unit_from_S(&table_.axes[3].map, T, g, S);
+    return std::exp(sample_encoded_at_unit(table_, unit, 0)) * slut_nl_E_base(T, r, S);
+}
+
+void NearLightTable::node_params(const size_t *node, double *params) const {
+    for (size_t a = 0; a < 3; ++a) params[a] = slut_axis_node(&table_.axes[a].map, static_cast<int>(node[a]));
+    params[3] = thick_only() ? HUGE_VAL
+                             : slut_nl_S_node(&table_.axes[3].map, params[0], params[1], static_cast<int>(node[3]));
+}
+
+double NearLightTable::node_E(const size_t *node) const {
+    double p[4];
+    node_params(node, p);
+    const double stored = std::exp(table_.values[table_.index(node)]);
+    return thick_only() ? stored : stored * slut_nl_E_base(p[0], p[2], p[3]);
 }
 
 double NearLightTable::radiance(const NearLightQuery &q) const {

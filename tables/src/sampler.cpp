@@ -9,6 +9,12 @@ double decode(Encoding encoding, double stored) {
 }
 
 double sample_encoded(const Table &table, const double *params, size_t channel) {
+    double unit[8];
+    for (size_t a = 0; a < table.axes.size() && a < 8; ++a) unit[a] = slut_unit_from_param(&table.axes[a].map, params[a]);
+    return sample_encoded_at_unit(table, unit, channel);
+}
+
+double sample_encoded_at_unit(const Table &table, const double *unit, size_t channel) {
     const size_t n_axes = table.axes.size();
     const size_t n_channels = table.channels.size();
     // Per axis: lower node and fraction. At most 8 axes (the file format's bound).
@@ -18,7 +24,7 @@ double sample_encoded(const Table &table, const double *params, size_t channel) 
     size_t s = n_channels;
     for (size_t a = 0; a < n_axes && a < 8; ++a) {
         const slut_axis &map = table.axes[a].map;
-        slut_cell_from_unit(slut_unit_from_param(&map, params[a]), map.count, &lower[a], &frac[a]);
+        slut_cell_from_unit(unit[a], map.count, &lower[a], &frac[a]);
         stride[a] = s;
         s *= static_cast<size_t>(map.count);
     }

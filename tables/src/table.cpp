@@ -62,6 +62,8 @@ const char *warp_name(int warp) {
     case SLUT_WARP_LOG1P: return "log1p";
     case SLUT_WARP_ASINH_COT: return "asinh_cot";
     case SLUT_WARP_SQRT1P: return "sqrt1p";
+    case SLUT_WARP_LOGLIN: return "loglin";
+    case SLUT_WARP_NL_QODDS: return "nl_qodds";
     default: return "unknown";
     }
 }
@@ -140,6 +142,14 @@ void Table::check_consistent() const {
             break;
         case SLUT_WARP_SQRT1P:
             if (!(m.min >= -1)) fail(label + ": warp 'sqrt1p' needs min >= -1 (min = " + num(m.min) + ")");
+            break;
+        case SLUT_WARP_LOGLIN:
+            if (!(m.min > 0) || !(m.scale > 0))
+                fail(label + ": warp 'loglin' needs min > 0 and scale > 0 (min = " + num(m.min) + ", scale = " +
+                     num(m.scale) + ")");
+            break;
+        case SLUT_WARP_NL_QODDS:
+            if (!(m.min > 0)) fail(label + ": warp 'nl_qodds' needs min > 0 (min = " + num(m.min) + ")");
             break;
         default: break;
         }

@@ -46,9 +46,12 @@ double near_light_radiance_exact(const NearLightQuery &q);
 double near_light_radiance_thin(const NearLightQuery &q);
 double near_light_radiance_distant(const NearLightQuery &q);
 
-// A loaded near-light table (kinds near_light_E3 and near_light_E4). Axes T, g, r[, S];
-// channel 0 = ln E. Outside the table's domain E is integrated exactly (~1 µs), never
-// clamped.
+// A loaded near-light table (quantity version kNearLightEQuantityVersion):
+//  - near_light_E3: axes T, g, r; channel 0 = ln E (S = ∞);
+//  - near_light_E4: axes T, g, r, q; channel 0 = ln(E/B), B = slut_nl_E_base(T, r, S). Axis q
+//    (warp nl_qodds) spans slabs S ∈ [min, max]; its unit coordinate depends on (T, g)
+//    (slut_nl_unit_from_S, kernels/slut_nearlight.h; docs/NEARLIGHT.md).
+// Outside the table's domain E is integrated exactly (~1 µs), never clamped.
 class NearLightTable {
 public:
     explicit NearLightTable(Table table); // checks kind, version, axes, channel
@@ -56,6 +59,9 @@ public:
     bool covers(double T, double g, double r, double S) const;
     double E(double T, double g, double r, double S) const; // S = +inf: thick
     double radiance(const NearLightQuery &q) const;
+    // The parameters (T, g, r, S) of a node (S = +inf in a thick table) and E stored there.
+    void node_params(const size_t *node, double *params) const;
+    double node_E(const size_t *node) const;
     const Table &table() const { return table_; }
 
 private:

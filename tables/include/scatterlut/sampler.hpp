@@ -17,6 +17,11 @@ double sample(const Table &table, const double *params, size_t channel = 0);
 // As sample(), but returns the interpolated encoded value (ln q for Log channels).
 double sample_encoded(const Table &table, const double *params, size_t channel = 0);
 
+// The interpolated encoded value at given unit coordinates (one per axis, each clamped to
+// [0, 1]): for axes whose unit coordinate is not a one-parameter warp (the near-light slab
+// axis, SLUT_WARP_NL_QODDS), computed by the caller (NearLightTable).
+double sample_encoded_at_unit(const Table &table, const double *unit, size_t channel = 0);
+
 // Decodes one stored value of a channel.
 double decode(Encoding encoding, double stored);
 

@@ -29,8 +29,9 @@ inline constexpr size_t kMaxAxes = 8;
 inline constexpr const char *kKindAirlightF = "airlight_F";
 inline constexpr uint32_t kAirlightFQuantityVersion = 1;
 inline constexpr const char *kKindNearLightE3 = "near_light_E3"; // E(T, g, r), S = ∞
-inline constexpr const char *kKindNearLightE4 = "near_light_E4"; // E(T, g, r, S)
-inline constexpr uint32_t kNearLightEQuantityVersion = 1;
+inline constexpr const char *kKindNearLightE4 = "near_light_E4"; // E(T, g, r, S) on axes (T, g, r, q)
+// 2: E4 stores ln(E/B) on the slab axis q (warp nl_qodds); 1 stored ln E on a log S axis.
+inline constexpr uint32_t kNearLightEQuantityVersion = 2;
 
 enum class Storage : uint32_t { F16 = 1, F32 = 2, F64 = 3 };
 const char *to_string(Storage s);
@@ -45,7 +46,7 @@ enum class Encoding : uint32_t {
 const char *to_string(Encoding e);
 bool encoding_from_string(const std::string &name, Encoding *out);
 
-const char *warp_name(int warp); // "linear", "log", "log1p", "asinh_cot", "sqrt1p"
+const char *warp_name(int warp); // "linear", "log", "log1p", "asinh_cot", "sqrt1p", "loglin", "nl_qodds"
 bool warp_from_name(const std::string &name, int *out);
 
 struct Axis {
