@@ -636,6 +636,24 @@ protected:
     }
 };
 
+// The packing fits every GPU: each dimension of both textures within the OpenGL 4.x and
+// D3D11 minimum of GL_MAX_3D_TEXTURE_SIZE (2048), and within the running GPU's own limit.
+// (The default E4 stacked along the depth would be 64 x 48 = 3072 deep: llvmpipe refuses it.)
+TEST_F(NearLightGpu, TexturesFitTheThreeDimensionalTextureLimit) {
+#if SLUT_HAVE_EGL
+    GLint limit = 0;
+    gpu().gl.glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &limit);
+    std::printf("[ limit ] GL_MAX_3D_TEXTURE_SIZE %d\n", limit);
+    for (const GpuTable *t : {&tables().e3, &tables().e4}) {
+        const auto &ax = t->rounded.axes;
+        for (int n : {ax[0].map.count, ax[1].map.count * t->layers(), ax[2].map.count}) {
+            EXPECT_LE(n, 2048) << t->rounded.kind;
+            EXPECT_LE(n, limit) << t->rounded.kind;
+        }
+    }
+#endif
+}
+
 TEST_F(NearLightGpu, GlslMatchesTheCppSampler) {
 #if SLUT_HAVE_EGL
     for (bool thick : {true, false}) {
