@@ -2,8 +2,9 @@
 // against the truth they must reproduce: the C++ runtime (scatterlut::NearLightTable::E
 // and ::radiance, near_light_radiance_thin / _distant; tables/src/nearlight.cpp, itself
 // tested against Boost.Math in test_nearlight_math.cpp and test_nearlight_table.cpp) on
-// the REAL default tables: `scatterlut generate` writes near_light_E3 (96 x 80 x 64) and
-// near_light_E4 (80 x 32 x 64 x 48) into the scratch directory, this test loads them,
+// the REAL tables of the default scene: `scatterlut generate` plans and writes
+// near_light_E3 (now 48 x 40 x 32) and near_light_E4 (now 40 x 16 x 32 x 24, axes T, g, r,
+// q) into the scratch directory, this test loads them,
 // uploads them as R32F 3-D textures (E4: the S layers stacked along the height) and
 // compares, query by query, with the double C++ code fed the same float-rounded inputs
 // and the same float-rounded table:
@@ -451,7 +452,8 @@ float4 main(float3 world_pos : TEXCOORD0, float3 eye_pos : TEXCOORD1, float3 nor
 //    per cell, times 1.5: the weights are the GPU's (measured on the running GPU by
 //    gpu_harness::hardware_filter_weight_error), and the filter receives the position as
 //    a normalised coordinate whose float ulp is 2^-24·n texels for an axis of n texels —
-//    along E4's stacked height n = g count × S count = 1536: ~9e-5 texel.
+//    along E4's stacked height n = g count × q count (384 here, 1536 for the default plan):
+//    ~2e-5 (~9e-5) texel.
 constexpr double kTolE = 1e-5, kTolPerLnE = 2e-7, kTolRadiance = 1e-5, kTolClosedForm = 1e-5,
                  kTolPerConditioning = 2e-7;
 
@@ -638,7 +640,8 @@ protected:
 
 // The packing fits every GPU: each dimension of both textures within the OpenGL 4.x and
 // D3D11 minimum of GL_MAX_3D_TEXTURE_SIZE (2048), and within the running GPU's own limit.
-// (The default E4 stacked along the depth would be 64 x 48 = 3072 deep: llvmpipe refuses it.)
+// (The library's default E4 plan, 80 x 32 x 64 x 48, is 80 x 1536 x 64 so; stacked along the
+// depth it would be 64 x 48 = 3072 deep, beyond 2048.)
 TEST_F(NearLightGpu, TexturesFitTheThreeDimensionalTextureLimit) {
 #if SLUT_HAVE_EGL
     GLint limit = 0;
