@@ -404,8 +404,8 @@ std::string glsl_fragment_source(bool es) {
            read_text(kShaderDir + "scatterlut_airlight.glsl") + glsl_snippet() + R"glsl(
 void main() {
     SlutNearLightTable t = slut_near_light_table_e3(
-        slut_axis_make(1e-3, 20.0, 0.3, SLUT_WARP_LOG1P, 96), slut_axis_make(-0.99, 1.0, 0.0, SLUT_WARP_SQRT1P, 80),
-        slut_axis_make(0.0, 1e3, 1e-5, SLUT_WARP_LOG1P, 64));
+        slut_axis_make(1e-3, 20.0, 1.0, SLUT_WARP_LOGLIN, 96), slut_axis_make(-0.99, 1.0, 0.0, SLUT_WARP_SQRT1P, 80),
+        slut_axis_make(0.0, 1e3, 1e-6, SLUT_WARP_LOG1P, 64));
     float L = slut_near_light_radiance(near_table, t, medium.x, medium.y, medium.z, normal,
                                        normalize(eye_pos - world_pos), light_pos - world_pos,
                                        1e30, 1.33, true);
@@ -420,8 +420,8 @@ std::string hlsl_pixel_source() {
            read_text(kShaderDir + "scatterlut_airlight.hlsl") + hlsl_snippet() + R"hlsl(
 float4 main(float3 world_pos : TEXCOORD0, float3 eye_pos : TEXCOORD1, float3 normal : NORMAL) : SV_Target {
     SlutNearLightTable t = slut_near_light_table_e3(
-        slut_axis_make(1e-3, 20.0, 0.3, SLUT_WARP_LOG1P, 96), slut_axis_make(-0.99, 1.0, 0.0, SLUT_WARP_SQRT1P, 80),
-        slut_axis_make(0.0, 1e3, 1e-5, SLUT_WARP_LOG1P, 64));
+        slut_axis_make(1e-3, 20.0, 1.0, SLUT_WARP_LOGLIN, 96), slut_axis_make(-0.99, 1.0, 0.0, SLUT_WARP_SQRT1P, 80),
+        slut_axis_make(0.0, 1e3, 1e-6, SLUT_WARP_LOG1P, 64));
     float L = slut_near_light_radiance(near_table, near_table_sampler, t, medium.x, medium.y, medium.z,
                                        normal, normalize(eye_pos - world_pos), light_pos - world_pos,
                                        1e30, 1.33, true);
