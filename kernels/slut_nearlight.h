@@ -326,9 +326,7 @@ SLUT_FN double slut_nl_N(double T, double g, double r, double S) {
  * the LOG warp in S. Inverse: q/(1 − q) = σ/(T·T H∞) = ρ, and by the law of sines in the
  * triangle light–entry point–P(S), S/T = sin(qθ)/sin((1 − q)θ) = ρ·sinc(qθ)/sinc((1 − q)θ). */
 
-/* sin(x)/x (1 at x = 0). */
-SLUT_FN double slut_nl_sinc(double x) { return (x == 0.0) ? 1.0 : sin(x) / x; }
-
+/* SLUT_SHADER_BEGIN (the slab coordinate: also the GLSL/HLSL snippets') */
 /* σ(T, g, S) of the derivation above: S > 0 finite, T > 0, g ∈ [−1 + ε, 1]. Robust at g = 1
  * (no division by sin θ: I_in/I_out and T·H∞ come from slut_nl_inv_square_integral). */
 SLUT_FN double slut_nl_depth_odds(double T, double g, double S) {
@@ -338,6 +336,17 @@ SLUT_FN double slut_nl_depth_odds(double T, double g, double S) {
     double outside = slut_nl_inv_square_integral(SLUT_HUGE_VAL, d * d + sg * sg, d, sg);
     return T * slut_nl_H_scaled(g, SLUT_HUGE_VAL) * (inside / outside);
 }
+
+/* S → unit coordinate x on a slab axis [S_min, S_max] at (T, g):
+ *   x = ln(σ(S)/σ(S_min)) / ln(σ(S_max)/σ(S_min));  not clamped. */
+SLUT_FN double slut_nl_unit_from_S_between(double T, double g, double S, double S_min, double S_max) {
+    double lo = log(slut_nl_depth_odds(T, g, S_min)), hi = log(slut_nl_depth_odds(T, g, S_max));
+    return (log(slut_nl_depth_odds(T, g, S)) - lo) / (hi - lo);
+}
+/* SLUT_SHADER_END */
+
+/* sin(x)/x (1 at x = 0). */
+SLUT_FN double slut_nl_sinc(double x) { return (x == 0.0) ? 1.0 : sin(x) / x; }
 
 /* The inverse: S with slut_nl_depth_odds(T, g, S) = sigma (> 0). */
 SLUT_FN double slut_nl_S_from_depth_odds(double T, double g, double sigma) {
@@ -349,8 +358,7 @@ SLUT_FN double slut_nl_S_from_depth_odds(double T, double g, double sigma) {
 
 /* S → unit coordinate x on the slab axis a (SLUT_WARP_NL_QODDS) at (T, g); not clamped. */
 SLUT_FN double slut_nl_unit_from_S(const slut_axis *a, double T, double g, double S) {
-    double lo = log(slut_nl_depth_odds(T, g, a->min)), hi = log(slut_nl_depth_odds(T, g, a->max));
-    return (log(slut_nl_depth_odds(T, g, S)) - lo) / (hi - lo);
+    return slut_nl_unit_from_S_between(T, g, S, a->min, a->max);
 }
 
 /* Unit coordinate x → S on the slab axis a at (T, g); the ends exact. */
@@ -439,17 +447,42 @@ SLUT_FN double slut_nl_radiance_exact(double sigma_s_per_m, double sigma_a_per_m
 
 /* ------------------------------------------------------------------ eye-side refraction */
 
+/* SLUT_SHADER_BEGIN (refraction and Fresnel: also the GLSL/HLSL snippets') */
+/* cos θ_t of the eye ray refracted into the medium, from μ_e = cos θ_i outside and
+ * η = n_medium/n_outside > 0 (Snell: sin θ_t = sin θ_i/η):
+ *   cos² θ_t = 1 − (1 − μ_e²)/η² = ((η − 1)(η + 1) + μ_e²)/η².
+ * The second form has no cancellation for η ≥ 1 (both terms ≥ 0) and, for η < 1, only the
+ * one inherent near the critical angle (μ_e² ≈ 1 − η²), between two terms each rounded
+ * once (η − 1 is exact for η ∈ [½, 2], Sterbenz); the first form subtracted from 1 a
+ * quantity near 1, whose rounding (an ulp of 1) is as large as cos² θ_t itself there. For
+ * η < 1 beyond the critical angle the ray grazes (0); never total internal reflection from
+ * outside (η ≥ 1). */
+SLUT_FN double slut_refracted_cos(double mu_e, double eta) {
+    return sqrt(fmax((eta - 1.0) * (eta + 1.0) + mu_e * mu_e, 0.0)) / eta;
+}
+
+/* Unpolarised Fresnel transmittance 1 − (R_s + R_p)/2 through the interface, from the
+ * cosines on the outside (cos_i) and the inside (cos_t) and η = n_medium/n_outside.
+ * With a = cos_i, b = η cos_t: 1 − r_s² = 1 − ((a − b)/(a + b))² = 4ab/(a + b)², and with
+ * a = η cos_i, b = cos_t the same for 1 − r_p², so
+ *   T = 2 η cos_i cos_t · (1/(cos_i + η cos_t)² + 1/(η cos_i + cos_t)²),
+ * a sum of positive terms: full relative precision where T → 0 (grazing incidence, and the
+ * critical angle for η < 1), where 1 − (r_s² + r_p²)/2 cancels. */
+SLUT_FN double slut_fresnel_transmittance(double cos_i, double cos_t, double eta) {
+    if (!(cos_t > 0.0) || !(cos_i > 0.0)) return 0.0;
+    double s = cos_i + eta * cos_t, p = eta * cos_i + cos_t;
+    return 2.0 * eta * cos_i * cos_t * (1.0 / (s * s) + 1.0 / (p * p));
+}
+/* SLUT_SHADER_END */
+
 /* The eye ray refracted into the medium (DESIGN §1.3): ω = unit vector from O towards the
  * viewer (outside), n the outward normal, eta = n_medium/n_outside > 0. Writes the unit
  * vector ω_t pointing from O back along the refracted ray (so the point at depth x is
- * O − x ω_t, the same convention as eye_dir) and returns cos θ_t = ω_t·n (> 0).
- * Snell: sin θ_t = sin θ_i/η; ω_t = (ω − μ_e n)/η + cos θ_t n. Never total internal
- * reflection from outside (η ≥ 1); for η < 1 beyond the critical angle the ray grazes
- * (cos θ_t = 0). */
+ * O − x ω_t, the same convention as eye_dir) and returns cos θ_t = ω_t·n (≥ 0,
+ * slut_refracted_cos): ω_t = (ω − μ_e n)/η + cos θ_t n, of unit length by Snell. */
 SLUT_FN double slut_refract_eye_dir(const double *normal, const double *eye_dir, double eta, double *out) {
     double mu_e = eye_dir[0] * normal[0] + eye_dir[1] * normal[1] + eye_dir[2] * normal[2];
-    double sin2_t = (1.0 - mu_e * mu_e) / (eta * eta);
-    double cos_t = sqrt(fmax(1.0 - sin2_t, 0.0));
+    double cos_t = slut_refracted_cos(mu_e, eta);
     double len2 = 0.0;
     for (int k = 0; k < 3; ++k) {
         out[k] = (eye_dir[k] - mu_e * normal[k]) / eta + cos_t * normal[k];
@@ -460,16 +493,7 @@ SLUT_FN double slut_refract_eye_dir(const double *normal, const double *eye_dir,
     return cos_t;
 }
 
-/* SLUT_SHADER_BEGIN (Fresnel and the closed forms: also the GLSL/HLSL snippets') */
-/* Unpolarised Fresnel transmittance 1 − (R_s + R_p)/2 through the interface, from the
- * cosines on the outside (cos_i) and the inside (cos_t) and η = n_medium/n_outside. */
-SLUT_FN double slut_fresnel_transmittance(double cos_i, double cos_t, double eta) {
-    if (!(cos_t > 0.0) || !(cos_i > 0.0)) return 0.0;
-    double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    return 1.0 - 0.5 * (rs * rs + rp * rp);
-}
-
+/* SLUT_SHADER_BEGIN (the closed forms: also the GLSL/HLSL snippets') */
 /* ------------------------------------------------------------------ closed forms (no table) */
 
 /* Distant-light attenuation integral ∫_0^S e^{−(1+c)t} dt = (1 − e^{−(1+c)S})/(1+c), c = 1/r
@@ -534,9 +558,11 @@ SLUT_FN double slut_nl_N_thin(double T, double g, double r, double S) {
  * would fall like 1/S while E stays). B is not an approximation anyone should use: it is an
  * encoding, exact by construction (E = B·e^{stored}). Measured: docs/NEARLIGHT.md.
  * B ≥ e^{−T} > 0 for T ≤ 700; B = 1 at T = 0. */
+/* SLUT_SHADER_BEGIN (the value base: also the GLSL/HLSL snippets') */
 SLUT_FN double slut_nl_E_base(double T, double r, double S) {
-    double S_eff = (S > 1e300) ? T : S * (T / (S + T));
+    double S_eff = (S > SLUT_INFINITE_ABOVE) ? T : S * (T / (S + T));
     return exp(-T) - expm1(-T) * slut_nl_E_thin(r, S_eff);
 }
+/* SLUT_SHADER_END */
 
 #endif /* SLUT_NEARLIGHT_H */

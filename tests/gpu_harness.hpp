@@ -194,6 +194,7 @@ Stats error_stats(const std::vector<float> &got, const std::vector<double> &refe
 #define SLUT_GL_FUNCTIONS(X)                                                               \
     X(PFNGLGETSTRINGPROC, glGetString)                                                     \
     X(PFNGLGETERRORPROC, glGetError)                                                       \
+    X(PFNGLGETINTEGERVPROC, glGetIntegerv)                                                 \
     X(PFNGLCREATESHADERPROC, glCreateShader)                                               \
     X(PFNGLSHADERSOURCEPROC, glShaderSource)                                               \
     X(PFNGLCOMPILESHADERPROC, glCompileShader)                                             \

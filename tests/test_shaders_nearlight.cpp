@@ -2,15 +2,16 @@
 // against the truth they must reproduce: the C++ runtime (scatterlut::NearLightTable::E
 // and ::radiance, near_light_radiance_thin / _distant; tables/src/nearlight.cpp, itself
 // tested against Boost.Math in test_nearlight_math.cpp and test_nearlight_table.cpp) on
-// the REAL default tables: `scatterlut generate` writes near_light_E3 (96 x 80 x 64) and
-// near_light_E4 (48 x 40 x 48 x 24) into the scratch directory, this test loads them,
-// uploads them as R32F 3-D textures (E4: the S layers stacked along the depth) and
+// the REAL tables of the default scene: `scatterlut generate` plans and writes
+// near_light_E3 (now 48 x 40 x 32) and near_light_E4 (now 40 x 16 x 32 x 24, axes T, g, r,
+// q) into the scratch directory, this test loads them,
+// uploads them as R32F 3-D textures (E4: the S layers stacked along the height) and
 // compares, query by query, with the double C++ code fed the same float-rounded inputs
 // and the same float-rounded table:
 //   - E(T, g, r[, S]) inside each table's domain (points uniform in the warped unit
 //     coordinates, plus the axis ends and r = 0), and outside it, where the shader clamps
-//     to the edge texels: there the reference is scatterlut::sample (the C++ sampler's own
-//     clamp), since NearLightTable::E would integrate exactly;
+//     to the edge texels: there the reference is NearLightTable::E at the point clamped to
+//     its axes (the edge value), since NearLightTable::E would integrate exactly outside;
 //   - radiance from geometry (random normal, eye and light directions, sigma_t, eta with
 //     and without Fresnel) wherever the C++ table covers the query, plus the zero limits
 //     (light below the plane, sigma_s = 0, I0 = 0, length 0);
@@ -33,7 +34,6 @@
 #include "gpu_harness.hpp"
 #include "scatterlut/io.hpp"
 #include "scatterlut/nearlight.hpp"
-#include "scatterlut/sampler.hpp"
 #include "scatterlut/table.hpp"
 
 extern "C" {
@@ -62,10 +62,23 @@ struct Tables {
     GpuTable e3, e4;
 };
 
+// The texture as docs/SHADERS.md packs it: E3 the payload as it stands (nT x ng x nr);
+// E4 its S layers stacked along the height (nT x ng*nS x nr, texel (iT, ig + ng*iS, ir)),
+// what one glTexSubImage3D per layer at y offset ng*iS uploads.
 GpuTable make_gpu_table(scatterlut::Table t) {
     GpuTable g;
     for (double &v : t.values) v = static_cast<float>(v);
     g.texels.assign(t.values.begin(), t.values.end());
+    if (t.axes.size() == 4) {
+        const size_t nT = t.axes[0].map.count, ng = t.axes[1].map.count, nr = t.axes[2].map.count,
+                     nS = t.axes[3].map.count;
+        for (size_t iS = 0; iS < nS; ++iS)
+            for (size_t ir = 0; ir < nr; ++ir)
+                for (size_t ig = 0; ig < ng; ++ig)
+                    for (size_t iT = 0; iT < nT; ++iT)
+                        g.texels[iT + nT * ((ig + ng * iS) + ng * nS * ir)] =
+                            static_cast<float>(t.values[iT + nT * (ig + ng * (ir + nr * iS))]);
+    }
     g.rounded = t;
     g.cpp = std::make_unique<scatterlut::NearLightTable>(std::move(t));
     return g;
@@ -194,8 +207,10 @@ void add_E_queries(const GpuTable &t, bool thick, std::mt19937_64 &rng, std::vec
             q.label = "E";
         } else {
             if (t.cpp->covers(T, g, r, S)) continue;
-            const double params[4] = {T, g, r, S};
-            q.reference = scatterlut::sample(t.rounded, params, 0); // the C++ clamp-to-edge
+            // The edge value: the C++ table at the point clamped to its axes (inside it).
+            const auto& ax = t.rounded.axes;
+            const auto clamp = [&](size_t a, double p) { return std::min(std::max(p, ax[a].map.min), ax[a].map.max); };
+            q.reference = t.cpp->E(clamp(0, T), clamp(1, g), clamp(2, r), thick ? kInf : clamp(3, S));
             q.ln_E = std::log(q.reference);
             q.label = "E_clamped";
         }
@@ -389,8 +404,8 @@ std::string glsl_fragment_source(bool es) {
            read_text(kShaderDir + "scatterlut_airlight.glsl") + glsl_snippet() + R"glsl(
 void main() {
     SlutNearLightTable t = slut_near_light_table_e3(
-        slut_axis_make(1e-3, 20.0, 0.3, SLUT_WARP_LOG1P, 96), slut_axis_make(-0.99, 1.0, 0.0, SLUT_WARP_SQRT1P, 80),
-        slut_axis_make(0.0, 1e3, 1e-5, SLUT_WARP_LOG1P, 64));
+        slut_axis_make(1e-3, 20.0, 1.0, SLUT_WARP_LOGLIN, 96), slut_axis_make(-0.99, 1.0, 0.0, SLUT_WARP_SQRT1P, 80),
+        slut_axis_make(0.0, 1e3, 1e-6, SLUT_WARP_LOG1P, 64));
     float L = slut_near_light_radiance(near_table, t, medium.x, medium.y, medium.z, normal,
                                        normalize(eye_pos - world_pos), light_pos - world_pos,
                                        1e30, 1.33, true);
@@ -405,8 +420,8 @@ std::string hlsl_pixel_source() {
            read_text(kShaderDir + "scatterlut_airlight.hlsl") + hlsl_snippet() + R"hlsl(
 float4 main(float3 world_pos : TEXCOORD0, float3 eye_pos : TEXCOORD1, float3 normal : NORMAL) : SV_Target {
     SlutNearLightTable t = slut_near_light_table_e3(
-        slut_axis_make(1e-3, 20.0, 0.3, SLUT_WARP_LOG1P, 96), slut_axis_make(-0.99, 1.0, 0.0, SLUT_WARP_SQRT1P, 80),
-        slut_axis_make(0.0, 1e3, 1e-5, SLUT_WARP_LOG1P, 64));
+        slut_axis_make(1e-3, 20.0, 1.0, SLUT_WARP_LOGLIN, 96), slut_axis_make(-0.99, 1.0, 0.0, SLUT_WARP_SQRT1P, 80),
+        slut_axis_make(0.0, 1e3, 1e-6, SLUT_WARP_LOG1P, 64));
     float L = slut_near_light_radiance(near_table, near_table_sampler, t, medium.x, medium.y, medium.z,
                                        normal, normalize(eye_pos - world_pos), light_pos - world_pos,
                                        1e30, 1.33, true);
@@ -437,7 +452,8 @@ float4 main(float3 world_pos : TEXCOORD0, float3 eye_pos : TEXCOORD1, float3 nor
 //    per cell, times 1.5: the weights are the GPU's (measured on the running GPU by
 //    gpu_harness::hardware_filter_weight_error), and the filter receives the position as
 //    a normalised coordinate whose float ulp is 2^-24·n texels for an axis of n texels —
-//    along E4's stacked depth n = r count × S count = 1152: ~7e-5 texel.
+//    along E4's stacked height n = g count × q count (384 here, 1536 for the default plan):
+//    ~2e-5 (~9e-5) texel.
 constexpr double kTolE = 1e-5, kTolPerLnE = 2e-7, kTolRadiance = 1e-5, kTolClosedForm = 1e-5,
                  kTolPerConditioning = 2e-7;
 
@@ -445,8 +461,8 @@ constexpr double kTolE = 1e-5, kTolPerLnE = 2e-7, kTolRadiance = 1e-5, kTolClose
 // axis the largest |Δ ln E| across one cell times (weight error + 2^-24·texels).
 double hardware_filter_extra(const GpuTable &t, double weight_error) {
     const auto &ax = t.rounded.axes;
-    const size_t n[3] = {static_cast<size_t>(ax[0].map.count), static_cast<size_t>(ax[1].map.count),
-                         static_cast<size_t>(ax[2].map.count) * t.layers()};
+    const size_t n[3] = {static_cast<size_t>(ax[0].map.count), static_cast<size_t>(ax[1].map.count) * t.layers(),
+                         static_cast<size_t>(ax[2].map.count)};
     const size_t stride[3] = {1, n[0], n[0] * n[1]};
     double jump[3] = {0, 0, 0};
     for (size_t k = 0; k < n[2]; ++k)
@@ -454,8 +470,8 @@ double hardware_filter_extra(const GpuTable &t, double weight_error) {
             for (size_t i = 0; i < n[0]; ++i) {
                 const size_t at = (k * n[1] + j) * n[0] + i, idx[3] = {i, j, k};
                 for (int a = 0; a < 3; ++a) {
-                    const bool last_r_of_layer = a == 2 && (k + 1) % static_cast<size_t>(ax[2].map.count) == 0;
-                    if (idx[a] + 1 < n[a] && !last_r_of_layer)
+                    const bool last_g_of_layer = a == 1 && (j + 1) % static_cast<size_t>(ax[1].map.count) == 0;
+                    if (idx[a] + 1 < n[a] && !last_g_of_layer)
                         jump[a] = std::max(jump[a], double{std::fabs(t.texels[at + stride[a]] - t.texels[at])});
                 }
             }
@@ -482,9 +498,10 @@ void expect_agreement(const std::vector<float> &got, bool thick, const std::stri
             return kTolE + kTolPerLnE * ln_e + filter_extra;
         };
         const Stats st = error_stats(got, r.reference, idx, tolerance);
-        std::printf("[ %s %s ] %-9s n=%zu  max %.3g  p99 %.3g  median %.3g  (worst: gpu %.9g, C++ %.9g)\n", run.c_str(),
-                    thick ? "E3" : "E4", label.c_str(), st.count, st.max, st.p99, st.median,
-                    static_cast<double>(got[st.worst]), r.reference[st.worst]);
+        std::printf("[ %s %s ] %-9s n=%zu  max %.3g  p99 %.3g  median %.3g  (worst: gpu %.9g, C++ %.9g)  "
+                    "max error/tolerance %.2f\n",
+                    run.c_str(), thick ? "E3" : "E4", label.c_str(), st.count, st.max, st.p99, st.median,
+                    static_cast<double>(got[st.worst]), r.reference[st.worst], st.max_ratio);
         if (label == "radiance" || label == "thin" || label == "distant") {
             // The same over the well-conditioned geometries (mu_l, mu_e >= ~0.1).
             std::vector<size_t> well;
@@ -527,7 +544,7 @@ std::vector<float> run_on_gpu(const std::string &source, bool thick, std::string
     params.layers = t.layers();
     params.n_queries = static_cast<int32_t>(r.queries.size());
     const auto &ax = t.rounded.axes;
-    return run_compute(source, t.texels, ax[0].map.count, ax[1].map.count, ax[2].map.count * t.layers(), packed,
+    return run_compute(source, t.texels, ax[0].map.count, ax[1].map.count * t.layers(), ax[2].map.count, packed,
                        r.queries.size(), &params, sizeof params, error);
 }
 #endif
@@ -564,7 +581,8 @@ TEST(NearLightShaderQueries, CoverTheDomainAndEveryPath) {
 }
 
 // Generated from one source: the GLSL and HLSL files agree outside their preludes, are
-// ASCII, and carry the kernels/ regions verbatim (the axis maps and the closed-form H).
+// ASCII, and carry the kernels/ regions verbatim (the axis maps, the closed-form H, E4's
+// slab coordinate and value base, refraction and Fresnel).
 TEST(NearLightShaderSources, OneBodyFromTheCHeaders) {
     const std::string g = shared_body(glsl_snippet()), h = shared_body(hlsl_snippet());
     ASSERT_FALSE(g.empty()) << "SHARED BODY markers missing in scatterlut_nearlight.glsl";
@@ -575,7 +593,12 @@ TEST(NearLightShaderSources, OneBodyFromTheCHeaders) {
     }
     for (const char *function : {"SLUT_FN double slut_warp_forward(int warp, double p, double p_min, double scale)",
                                  "SLUT_FN double slut_nl_H_scaled(double g, double S_over_T)",
-                                 "SLUT_FN double slut_nl_E_thin(double r, double S)"}) {
+                                 "SLUT_FN double slut_nl_E_thin(double r, double S)",
+                                 "SLUT_FN double slut_nl_depth_odds(double T, double g, double S)",
+                                 "SLUT_FN double slut_nl_unit_from_S_between(double T, double g, double S, double S_min, double S_max)",
+                                 "SLUT_FN double slut_nl_E_base(double T, double r, double S)",
+                                 "SLUT_FN double slut_refracted_cos(double mu_e, double eta)",
+                                 "SLUT_FN double slut_fresnel_transmittance(double cos_i, double cos_t, double eta)"}) {
         EXPECT_NE(g.find(function), std::string::npos) << function << " is not copied from kernels/";
     }
 }
@@ -614,6 +637,25 @@ protected:
 #endif
     }
 };
+
+// The packing fits every GPU: each dimension of both textures within the OpenGL 4.x and
+// D3D11 minimum of GL_MAX_3D_TEXTURE_SIZE (2048), and within the running GPU's own limit.
+// (The library's default E4 plan, 80 x 32 x 64 x 48, is 80 x 1536 x 64 so; stacked along the
+// depth it would be 64 x 48 = 3072 deep, beyond 2048.)
+TEST_F(NearLightGpu, TexturesFitTheThreeDimensionalTextureLimit) {
+#if SLUT_HAVE_EGL
+    GLint limit = 0;
+    gpu().gl.glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &limit);
+    std::printf("[ limit ] GL_MAX_3D_TEXTURE_SIZE %d\n", limit);
+    for (const GpuTable *t : {&tables().e3, &tables().e4}) {
+        const auto &ax = t->rounded.axes;
+        for (int n : {ax[0].map.count, ax[1].map.count * t->layers(), ax[2].map.count}) {
+            EXPECT_LE(n, 2048) << t->rounded.kind;
+            EXPECT_LE(n, limit) << t->rounded.kind;
+        }
+    }
+#endif
+}
 
 TEST_F(NearLightGpu, GlslMatchesTheCppSampler) {
 #if SLUT_HAVE_EGL
