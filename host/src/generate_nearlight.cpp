@@ -88,6 +88,7 @@ Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const 
     }
     t.values.resize(n);
     device.queue().enqueueReadBuffer(out, CL_TRUE, 0, n * sizeof(double), t.values.data());
+    device.kernels_ran("nearlight_E.cl");
 
     t.accuracy.integration_max_rel = measure_nearlight_integration(t, 400, 1);
     t.accuracy.storage_max_rel = storage_rounding_max_rel(t, t.storage);
