@@ -72,11 +72,23 @@ SLUT_FN double slut_warp_inverse(int warp, double y, double min, double scale) {
     }
 }
 
+/* The warped ends g(min), g(max) of an axis. They are constant per axis: a sampler that
+   looks up many points computes them once and calls slut_unit_from_warped. */
+SLUT_FN void slut_axis_warped_ends(const slut_axis *a, double *g0, double *g1) {
+    *g0 = slut_warp_forward(a->warp, a->min, a->min, a->scale);
+    *g1 = slut_warp_forward(a->warp, a->max, a->min, a->scale);
+}
+
+/* Parameter → unit coordinate x (not clamped), given the axis's warped ends. */
+SLUT_FN double slut_unit_from_warped(const slut_axis *a, double p, double g0, double g1) {
+    return (slut_warp_forward(a->warp, p, a->min, a->scale) - g0) / (g1 - g0);
+}
+
 /* Parameter → unit coordinate x (not clamped). */
 SLUT_FN double slut_unit_from_param(const slut_axis *a, double p) {
-    double g0 = slut_warp_forward(a->warp, a->min, a->min, a->scale);
-    double g1 = slut_warp_forward(a->warp, a->max, a->min, a->scale);
-    return (slut_warp_forward(a->warp, p, a->min, a->scale) - g0) / (g1 - g0);
+    double g0, g1;
+    slut_axis_warped_ends(a, &g0, &g1);
+    return slut_unit_from_warped(a, p, g0, g1);
 }
 
 /* Unit coordinate x → parameter. Node i is slut_param_from_unit(a, i/(count−1)). */

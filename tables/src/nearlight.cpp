@@ -16,6 +16,10 @@ namespace {
 void require(bool ok, const std::string &message) {
     if (!ok) throw std::invalid_argument(message);
 }
+// Literal messages: no std::string built on the hot path (radiance checks every query).
+void require(bool ok, const char *message) {
+    if (!ok) throw std::invalid_argument(message);
+}
 
 bool unit_vector(const double *v) {
     const double n2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
@@ -110,6 +114,7 @@ NearLightTable::NearLightTable(Table table) : table_(std::move(table)) {
     require(!table_.channels.empty() && table_.channels[0].name == "ln_E" && table_.channels[0].encoding == Encoding::Log,
             "near-light table channel 0 must be ln_E (log encoded)");
     table_.check_consistent();
+    cache_ = make_sampler_cache(table_);
 }
 
 bool NearLightTable::covers(double T, double g, double r, double S) const {
@@ -122,7 +127,7 @@ bool NearLightTable::covers(double T, double g, double r, double S) const {
 double NearLightTable::E(double T, double g, double r, double S) const {
     if (!covers(T, g, r, S)) return T > 0.0 ? slut_nl_E(T, g, r, S) : 1.0;
     const double params[4] = {T, g, r, S};
-    return sample(table_, params, 0);
+    return sample(table_, cache_, params, 0);
 }
 
 double NearLightTable::radiance(const NearLightQuery &q) const {

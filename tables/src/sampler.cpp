@@ -8,7 +8,18 @@ double decode(Encoding encoding, double stored) {
     return encoding == Encoding::Log ? std::exp(stored) : stored;
 }
 
+SamplerCache make_sampler_cache(const Table &table) {
+    SamplerCache c;
+    for (size_t a = 0; a < table.axes.size() && a < 8; ++a)
+        slut_axis_warped_ends(&table.axes[a].map, &c.g0[a], &c.g1[a]);
+    return c;
+}
+
 double sample_encoded(const Table &table, const double *params, size_t channel) {
+    return sample_encoded(table, make_sampler_cache(table), params, channel);
+}
+
+double sample_encoded(const Table &table, const SamplerCache &cache, const double *params, size_t channel) {
     const size_t n_axes = table.axes.size();
     const size_t n_channels = table.channels.size();
     // Per axis: lower node and fraction. At most 8 axes (the file format's bound).
@@ -18,7 +29,8 @@ double sample_encoded(const Table &table, const double *params, size_t channel) 
     size_t s = n_channels;
     for (size_t a = 0; a < n_axes && a < 8; ++a) {
         const slut_axis &map = table.axes[a].map;
-        slut_cell_from_unit(slut_unit_from_param(&map, params[a]), map.count, &lower[a], &frac[a]);
+        slut_cell_from_unit(slut_unit_from_warped(&map, params[a], cache.g0[a], cache.g1[a]), map.count, &lower[a],
+                            &frac[a]);
         stride[a] = s;
         s *= static_cast<size_t>(map.count);
     }
@@ -40,6 +52,10 @@ double sample_encoded(const Table &table, const double *params, size_t channel) 
 
 double sample(const Table &table, const double *params, size_t channel) {
     return decode(table.channels[channel].encoding, sample_encoded(table, params, channel));
+}
+
+double sample(const Table &table, const SamplerCache &cache, const double *params, size_t channel) {
+    return decode(table.channels[channel].encoding, sample_encoded(table, cache, params, channel));
 }
 
 } // namespace scatterlut
