@@ -19,12 +19,13 @@
  * work-items around a data-dependent loop; explicit vectors do). Rows are ascending, so
  * lane 0 has the smallest u of the item: once u_0·y > 40 every lane's remaining terms are
  * below e^{−40} of the first one and the interval's rule is cut there (nodes ascend in y).
+ * Where the layer at y = 0 is thin (u ≥ slut_gs_series_u_min(w_j) for lane 0, hence all
+ * lanes) the whole S_j is the large-u series Σ_k c_k(w_j)/u^{k+1} instead (slut_airlight.h:
+ * ≤ 1e-16 relative there; the host passes the coefficients), and the sweep continues from it.
  * Output: out[j·n_u + i] = ln G̃(u_i, w_j) (axis 0 fastest, the file layout); u = 0 is
  * exactly ln 1 = 0.
  */
-#ifdef cl_khr_fp64
-#pragma OPENCL EXTENSION cl_khr_fp64 : enable
-#endif
+#include "slut_airlight.h" /* SLUT_GS_SERIES_TERMS */
 
 __kernel void airlight_ln_gs_sweep(__global double *out, int n_u, int n_w,
                                    __global const double *u_rows,     /* n_u padded to 8k, ascending */
@@ -33,20 +34,30 @@ __kernel void airlight_ln_gs_sweep(__global double *out, int n_u, int n_w,
                                    __global const int *item_set,      /* rule set of each work-item */
                                    __global const int *node_begin,    /* n_w + 1 offsets per set   */
                                    __global const double *node_y,     /* y_jn, ascending per j     */
-                                   __global const double *node_weight /* W_jn                      */) {
+                                   __global const double *node_weight, /* W_jn                      */
+                                   __global const double *series_u_min, /* n_w: the series holds above */
+                                   __global const double *series_coef  /* n_w × SLUT_GS_SERIES_TERMS */) {
     int item = get_global_id(0);
     if (8 * item >= n_u) return;
     double8 u = vload8(item, u_rows);
     double u_lo = u.s0;
     __global const int *begin = node_begin + (size_t)item_set[item] * (size_t)(n_w + 1);
     double8 sum = (double8)(0.0);
+    double8 inv_u = 1.0 / u;
     for (int j = 0; j < n_w; ++j) {
-        if (j > 0) sum *= exp(-u * delta[j]);
-        int end = begin[j + 1];
-        for (int n = begin[j]; n < end; ++n) {
-            double y = node_y[n];
-            if (u_lo * y > 40.0) break;
-            sum += node_weight[n] * exp(-u * y);
+        if (u_lo >= series_u_min[j]) { /* the whole S_j from the series, Horner in 1/u */
+            __global const double *c = series_coef + (size_t)j * SLUT_GS_SERIES_TERMS;
+            double8 s = (double8)(c[SLUT_GS_SERIES_TERMS - 1]);
+            for (int k = SLUT_GS_SERIES_TERMS - 2; k >= 0; --k) s = fma(s, inv_u, (double8)(c[k]));
+            sum = s * inv_u;
+        } else { /* the recurrence */
+            if (j > 0) sum *= exp(-u * delta[j]);
+            int end = begin[j + 1];
+            for (int n = begin[j]; n < end; ++n) {
+                double y = node_y[n];
+                if (u_lo * y > 40.0) break;
+                sum += node_weight[n] * exp(-u * y);
+            }
         }
         double8 ln_gs = log(sum / w_nodes[j]);
         ln_gs = select(ln_gs, (double8)(0.0), u == (double8)(0.0));

@@ -164,14 +164,15 @@ struct RuleSet {
 
 constexpr double kDroppedEfolds = 40.0; // e^{−40} ≈ 4e-18 of the interval's first term
 
-RuleSet sweep_rule_set(const std::vector<double> &tau, const std::vector<double> &delta, double u_lo,
-                       double u_cap) {
+RuleSet sweep_rule_set(const std::vector<double> &tau, const std::vector<double> &delta,
+                       const std::vector<double> &series_u_min, double u_lo, double u_cap) {
     RuleSet s;
     const int n_w = static_cast<int>(tau.size());
     const double h0_decay = 14.0 / u_cap, y_cut = kDroppedEfolds / u_lo;
     for (int j = 0; j < n_w; ++j) {
         const double t = tau[static_cast<size_t>(j)];
         s.begin.push_back(static_cast<int>(s.y.size()));
+        if (u_lo >= series_u_min[static_cast<size_t>(j)]) continue; // every item of the set uses the series
         const double end = (j > 0) ? std::min(delta[static_cast<size_t>(j)], y_cut) : y_cut;
         const double pole_distance = std::sqrt(t * t + 1.0); // |τ + i|: the poles at y = −τ ± i
         const double ell = std::min(end, pole_distance);
@@ -226,6 +227,12 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
         tau[k] = std::cos(w_nodes[k]) / std::sin(w_nodes[k]); // as slut_w_gs_quadrature forms it
         if (j > 0) delta[k] = tau[k - 1] - tau[k];
     }
+    // Where the large-u series holds (slut_gs_series_u_min) it replaces the rule.
+    std::vector<double> series_u_min(w_nodes.size()), series_coef(w_nodes.size() * SLUT_GS_SERIES_TERMS);
+    for (size_t k = 0; k < w_nodes.size(); ++k) {
+        series_u_min[k] = slut_gs_series_u_min(w_nodes[k]);
+        slut_gs_large_u_coefficients(w_nodes[k], &series_coef[k * SLUT_GS_SERIES_TERMS]);
+    }
 
     // Rule sets for rows u ≤ cap_c = u_max/4^c: a row of small u needs no panels for a
     // layer of width 1/u_max, so each work-item takes the set of the smallest cap above its
@@ -255,7 +262,7 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
     std::vector<RuleSet> sets(set_cap.size());
     parallel_for(static_cast<int>(sets.size()), [&](int c) {
         const size_t k = static_cast<size_t>(c);
-        if (set_u_lo[k] < HUGE_VAL) sets[k] = sweep_rule_set(tau, delta, set_u_lo[k], set_cap[k]);
+        if (set_u_lo[k] < HUGE_VAL) sets[k] = sweep_rule_set(tau, delta, series_u_min, set_u_lo[k], set_cap[k]);
     });
     std::vector<double> node_y, node_weight;
     std::vector<int> node_begin;
@@ -275,12 +282,14 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
     const cl::Buffer b_u = input_buffer(device, u_rows), b_w = input_buffer(device, w_nodes),
                      b_delta = input_buffer(device, delta), b_set = input_buffer(device, item_set),
                      b_begin = input_buffer(device, node_begin), b_y = input_buffer(device, node_y),
-                     b_weight = input_buffer(device, node_weight);
+                     b_weight = input_buffer(device, node_weight), b_series_u = input_buffer(device, series_u_min),
+                     b_series_c = input_buffer(device, series_coef);
     int arg = 0;
     kernel.setArg(arg++, out);
     kernel.setArg(arg++, au.count);
     kernel.setArg(arg++, aw.count);
-    for (const cl::Buffer *b : {&b_u, &b_w, &b_delta, &b_set, &b_begin, &b_y, &b_weight}) kernel.setArg(arg++, *b);
+    for (const cl::Buffer *b : {&b_u, &b_w, &b_delta, &b_set, &b_begin, &b_y, &b_weight, &b_series_u, &b_series_c})
+        kernel.setArg(arg++, *b);
     // Few, heavy work-items: a small local size spreads them over the cores (POCL-NOTES.md).
     device.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(static_cast<size_t>(items)), cl::NDRange(1));
     void *mapped = device.queue().enqueueMapBuffer(out, CL_TRUE, CL_MAP_READ, 0, values.size() * sizeof(double));
