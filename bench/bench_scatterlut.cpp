@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -48,6 +49,14 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 scatterlut::Device &device() {
     static scatterlut::Device d("");
     return d;
+}
+
+// A pause (untimed) between the device run and the baseline, so that the device's worker
+// threads are idle again and do not compete with the single-threaded baseline.
+void settle(benchmark::State &state) {
+    state.PauseTiming();
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    state.ResumeTiming();
 }
 
 double median(std::vector<double> v) { return scatterlut::percentile(std::move(v), 0.5); }
@@ -109,6 +118,7 @@ void BM_AirlightGeneration(benchmark::State &state) {
         auto t0 = Clock::now();
         values = scatterlut::integrate_airlight_ln_gs(device(), layout);
         device_s.push_back(seconds_since(t0));
+        settle(state);
         std::vector<double> base(picks.size());
         evals = 0;
         t0 = Clock::now();
@@ -191,6 +201,7 @@ void BM_NearLightGeneration(benchmark::State &state) {
         auto t0 = Clock::now();
         values = scatterlut::integrate_nearlight_ln_E(device(), layout);
         device_s.push_back(seconds_since(t0));
+        settle(state);
         std::vector<double> base(picks.size());
         evals = 0;
         t0 = Clock::now();
@@ -376,31 +387,42 @@ int run_generate(const std::vector<std::string> &args, const std::vector<std::st
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+// Times `args` as a child process under one cache state (see above), after one untimed
+// run that fills whichever cache is on; private cache directories under work_dir.
+void time_child(benchmark::State &state, const std::vector<std::string> &args, int cache_state,
+                const std::filesystem::path &cache_dir) {
+    const bool pocl_warm = cache_state >= 2, ours_warm = cache_state == 1 || cache_state == 3;
+    const std::vector<std::string> env = {"XDG_CACHE_HOME=" + cache_dir.string(),
+                                          std::string("POCL_KERNEL_CACHE=") + (pocl_warm ? "1" : "0"),
+                                          std::string("SCATTERLUT_PROGRAM_CACHE=") + (ours_warm ? "1" : "0")};
+    if (run_generate(args, env) != 0) {
+        state.SkipWithError(("child failed: " + args[0]).c_str());
+        return;
+    }
+    for (auto _ : state) {
+        const auto t0 = Clock::now();
+        if (run_generate(args, env) != 0) state.SkipWithError(("child failed: " + args[0]).c_str());
+        state.SetIterationTime(seconds_since(t0));
+    }
+}
+
+std::filesystem::path fresh_directory(const std::string &name) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("slut_bench_" + std::to_string(::getpid()) + "_" + name);
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir / "cache");
+    return dir;
+}
+
 void BM_GenerateProcess(benchmark::State &state, std::string scene, int cache_state) {
-    namespace fs = std::filesystem;
-    const fs::path dir = fs::temp_directory_path() / ("slut_bench_" + std::to_string(::getpid()) + "_" +
-                                                      std::to_string(cache_state));
-    fs::remove_all(dir);
-    fs::create_directories(dir / "cache");
+    const std::filesystem::path dir = fresh_directory("generate_" + std::to_string(cache_state));
     std::vector<std::string> args = {SLUT_BINARY, "generate", "--out", (dir / "out").string()};
     if (!scene.empty()) {
         args.push_back("--scene");
         args.push_back(scene);
     }
-    const bool pocl_warm = cache_state >= 2, ours_warm = cache_state == 1 || cache_state == 3;
-    const std::vector<std::string> env = {"XDG_CACHE_HOME=" + (dir / "cache").string(),
-                                          std::string("POCL_KERNEL_CACHE=") + (pocl_warm ? "1" : "0"),
-                                          std::string("SCATTERLUT_PROGRAM_CACHE=") + (ours_warm ? "1" : "0")};
-    if (run_generate(args, env) != 0) { // warm-up run (fills whichever cache is on)
-        state.SkipWithError("scatterlut generate failed");
-        return;
-    }
-    for (auto _ : state) {
-        const auto t0 = Clock::now();
-        if (run_generate(args, env) != 0) state.SkipWithError("scatterlut generate failed");
-        state.SetIterationTime(seconds_since(t0));
-    }
-    fs::remove_all(dir);
+    time_child(state, args, cache_state, dir / "cache");
+    std::filesystem::remove_all(dir);
 }
 
 // The fixed cost alone: this binary re-run as a child with --slut-fixed-cost (context,
@@ -420,26 +442,9 @@ int fixed_cost_child() {
 }
 
 void BM_FixedCost(benchmark::State &state, int cache_state) {
-    namespace fs = std::filesystem;
-    const fs::path dir = fs::temp_directory_path() / ("slut_bench_fixed_" + std::to_string(::getpid()) + "_" +
-                                                      std::to_string(cache_state));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    const bool pocl_warm = cache_state >= 2, ours_warm = cache_state == 1 || cache_state == 3;
-    const std::vector<std::string> args = {g_self, "--slut-fixed-cost"};
-    const std::vector<std::string> env = {"XDG_CACHE_HOME=" + dir.string(),
-                                          std::string("POCL_KERNEL_CACHE=") + (pocl_warm ? "1" : "0"),
-                                          std::string("SCATTERLUT_PROGRAM_CACHE=") + (ours_warm ? "1" : "0")};
-    if (run_generate(args, env) != 0) {
-        state.SkipWithError("fixed-cost child failed");
-        return;
-    }
-    for (auto _ : state) {
-        const auto t0 = Clock::now();
-        if (run_generate(args, env) != 0) state.SkipWithError("fixed-cost child failed");
-        state.SetIterationTime(seconds_since(t0));
-    }
-    fs::remove_all(dir);
+    const std::filesystem::path dir = fresh_directory("fixed_" + std::to_string(cache_state));
+    time_child(state, {g_self, "--slut-fixed-cost"}, cache_state, dir / "cache");
+    std::filesystem::remove_all(dir);
 }
 
 void register_process_benchmarks() {
