@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "opencl_device.hpp"
 #include "scatterlut/airlight.hpp"
@@ -33,7 +34,12 @@ struct SamplingStats {
 // A table with the plan's axes and no values yet.
 Table make_airlight_table_layout(const AirlightPlan &plan);
 
-// Integrates every node on the device. progress(done, total) may be empty.
+// ln G̃ at every node of the layout's axes (axis 0 fastest), integrated on the device by
+// the sweep of kernels/airlight_F.cl; no accuracy measurement.
+std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout);
+
+// Integrates every node on the device and measures the table's accuracy on the host.
+// progress(fraction done) may be empty.
 Table generate_airlight_table(Device &device, const AirlightPlan &plan, const Provenance &provenance,
                               const std::function<void(double)> &progress = {});
 

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "generate_airlight.hpp" // SamplingStats
 #include "opencl_device.hpp"
@@ -31,6 +32,11 @@ struct NearLightPlan {
 NearLightPlan default_near_light_plan(bool finite_thickness);
 
 Table make_nearlight_table_layout(const NearLightPlan &plan);
+
+// ln E at every node of the layout's axes (axis 0 fastest) on the device; no accuracy
+// measurement. progress(fraction done) may be empty.
+std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout,
+                                             const std::function<void(double)> &progress = {});
 
 Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const Provenance &provenance,
                                const std::function<void(double)> &progress = {});
