@@ -212,7 +212,7 @@ cl::Program &Device::program(const std::string &cl_file) {
             cached.build(std::vector<cl::Device>{device_}, options.c_str());
             entry.program = std::move(cached);
             entry.origin = ProgramOrigin::Cache;
-            entry.binary_hash = fnv1a64(binary->data(), binary->size());
+            entry.binary_size = binary->size();
         } catch (const cl::Error &e) {
             entry.cache.log(std::string("ignored (the driver rejected the binary: ") + e.what() + " " +
                             std::to_string(e.err()) + "); building from source");
@@ -235,16 +235,16 @@ ProgramOrigin Device::program_origin(const std::string &cl_file) const {
 void Device::kernels_ran(const std::string &cl_file) {
     for (auto &entry : programs_) {
         if (entry.file != cl_file || !entry.cache.enabled()) continue;
-        // PoCL compiles a work-group function per local size at the first enqueue that
-        // needs it, so the binary grows as new launch shapes run: store it whenever it
-        // differs from the one stored or loaded (a few ms; nothing when it has not changed).
+        // PoCL compiles a work-group function per launch shape at the first enqueue that
+        // needs it, so the binary grows as new shapes run: store it whenever its size
+        // differs from the one stored or loaded (a size query; the binary only then).
         try {
+            const std::vector<size_t> sizes = entry.program.getInfo<CL_PROGRAM_BINARY_SIZES>();
+            if (sizes.size() != 1 || sizes[0] == 0 || sizes[0] == entry.binary_size) return;
             const std::vector<std::vector<unsigned char>> binaries = entry.program.getInfo<CL_PROGRAM_BINARIES>();
             if (binaries.size() != 1 || binaries[0].empty()) return;
-            const uint64_t hash = fnv1a64(binaries[0].data(), binaries[0].size());
-            if (hash == entry.binary_hash) return;
             entry.cache.store(std::vector<uint8_t>(binaries[0].begin(), binaries[0].end()));
-            entry.binary_hash = hash;
+            entry.binary_size = binaries[0].size();
         } catch (const cl::Error &e) {
             entry.cache.log(std::string("not stored (") + e.what() + ")");
         }

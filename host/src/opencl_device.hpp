@@ -58,7 +58,7 @@ public:
     ProgramOrigin program_origin(const std::string &cl_file) const;
 
     // Generators call this once the program's kernels have completed a run: the program's
-    // binary then goes into the binary cache if it differs from the stored one (after the
+    // binary then goes into the binary cache if it grew since it was stored (after the
     // run, so that it holds the work-group functions PoCL compiles at the first enqueue).
     void kernels_ran(const std::string &cl_file);
 
@@ -72,7 +72,7 @@ private:
         cl::Program program;
         ProgramCache cache;
         ProgramOrigin origin;
-        uint64_t binary_hash; // FNV-1a of the binary last stored or loaded (0: none)
+        size_t binary_size; // of the binary last stored or loaded (0: none)
     };
     std::list<ProgramEntry> programs_; // stable references
 };
