@@ -202,7 +202,7 @@ cl::Program &Device::program(const std::string &cl_file) {
                                     info_.platform_name + "\ndevice: " + info_.device_name +
                                     "\ndevice version: " + info_.device_version + "\ndriver: " +
                                     info_.driver_version + "\noptions: " + options + "\nsource: " + source_hash),
-                       ProgramOrigin::Source, false};
+                       ProgramOrigin::Source, 0};
     if (std::optional<std::vector<uint8_t>> binary = entry.cache.load()) {
         try {
             std::vector<cl_int> status;
@@ -212,6 +212,7 @@ cl::Program &Device::program(const std::string &cl_file) {
             cached.build(std::vector<cl::Device>{device_}, options.c_str());
             entry.program = std::move(cached);
             entry.origin = ProgramOrigin::Cache;
+            entry.binary_size = binary->size();
         } catch (const cl::Error &e) {
             entry.cache.log(std::string("ignored (the driver rejected the binary: ") + e.what() + " " +
                             std::to_string(e.err()) + "); building from source");
@@ -233,12 +234,17 @@ ProgramOrigin Device::program_origin(const std::string &cl_file) const {
 
 void Device::kernels_ran(const std::string &cl_file) {
     for (auto &entry : programs_) {
-        if (entry.file != cl_file || entry.origin != ProgramOrigin::Source || entry.stored) continue;
-        entry.stored = true; // once per Device, whatever the outcome
-        if (!entry.cache.enabled()) return;
+        if (entry.file != cl_file || !entry.cache.enabled()) continue;
+        // PoCL compiles a work-group function per launch shape at the first enqueue that
+        // needs it, so the binary grows as new shapes run: store it whenever its size
+        // differs from the one stored or loaded (a size query; the binary only then).
         try {
+            const std::vector<size_t> sizes = entry.program.getInfo<CL_PROGRAM_BINARY_SIZES>();
+            if (sizes.size() != 1 || sizes[0] == 0 || sizes[0] == entry.binary_size) return;
             const std::vector<std::vector<unsigned char>> binaries = entry.program.getInfo<CL_PROGRAM_BINARIES>();
-            if (binaries.size() == 1) entry.cache.store(std::vector<uint8_t>(binaries[0].begin(), binaries[0].end()));
+            if (binaries.size() != 1 || binaries[0].empty()) return;
+            entry.cache.store(std::vector<uint8_t>(binaries[0].begin(), binaries[0].end()));
+            entry.binary_size = binaries[0].size();
         } catch (const cl::Error &e) {
             entry.cache.log(std::string("not stored (") + e.what() + ")");
         }

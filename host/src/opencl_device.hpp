@@ -57,9 +57,9 @@ public:
     cl::Program &program(const std::string &cl_file);
     ProgramOrigin program_origin(const std::string &cl_file) const;
 
-    // Generators call this once the program's kernels have completed a run: a program
-    // built from source then goes into the binary cache (after the run, so that the
-    // binary holds the work-group functions PoCL compiles at the first enqueue).
+    // Generators call this once the program's kernels have completed a run: the program's
+    // binary then goes into the binary cache if it grew since it was stored (after the
+    // run, so that it holds the work-group functions PoCL compiles at the first enqueue).
     void kernels_ran(const std::string &cl_file);
 
 private:
@@ -72,7 +72,7 @@ private:
         cl::Program program;
         ProgramCache cache;
         ProgramOrigin origin;
-        bool stored; // kernels_ran has handled it
+        size_t binary_size; // of the binary last stored or loaded (0: none)
     };
     std::list<ProgramEntry> programs_; // stable references
 };
