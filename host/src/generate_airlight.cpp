@@ -96,23 +96,25 @@ double log_gl_error_constant(int m) {
 
 // The smallest order m ≤ kMaxOrder (0 if none) whose error on the panel [a, a + h] of
 //   ∫ e^{−u y} / (1 + (τ + y)²) dy,  every u ∈ (0, u_max],
-// is below kPanelEps of the integral it belongs to, and the order for which this holds.
+// is below the panel bound e^{log_eps} of the integral it belongs to, and the order for which this holds.
 //  * Exponential factor: |f^{(2m)}| ≤ u^{2m} e^{−u a}, so the absolute error is
 //    ≤ C_m h (u h)^{2m} e^{−u a} · f(a); the interval's integral is at least
 //    ~0.63 f(τ)·min(ℓ, 1/u) (ℓ = min(Δ, |τ + i|): f halves over |τ + i|). The ratio,
 //    ∝ u^{2m} max(u, 1/ℓ) e^{−u a}, is maximised in closed form over u ∈ (0, u_max].
 //  * The poles of 1/(1 + t²) at y = −τ ± i: Bernstein ellipse ρ of the panel through them,
 //    error ≲ 64/(15(ρ² − 1)) ρ^{−2m} relative (Trefethen, ATAP ch. 19).
-constexpr double kPanelEps = 1e-17;
+// The panel bound is a tenth of the table's integration tolerance (the plan's; 1e-16 by
+// default, i.e. kPanelEps = 1e-17): a cell sums a few panels, and the bound is an estimate.
+constexpr double kPanelShareOfTolerance = 0.1;
 
 // Everything panel_order needs that does not change along one interval.
 struct IntervalBounds {
-    double tau, log_ell, log_inv_ell, u_split, log_u_split, u_max, log_u_max;
+    double tau, log_ell, log_inv_ell, u_split, log_u_split, u_max, log_u_max, log_eps;
 };
 
-IntervalBounds interval_bounds(double tau, double ell, double u_max) {
+IntervalBounds interval_bounds(double tau, double ell, double u_max, double panel_eps) {
     const double u_split = std::min(1.0 / ell, u_max);
-    return {tau, std::log(ell), -std::log(ell), u_split, std::log(u_split), u_max, std::log(u_max)};
+    return {tau, std::log(ell), -std::log(ell), u_split, std::log(u_split), u_max, std::log(u_max), std::log(panel_eps)};
 }
 
 int panel_order(double a, double h, const IntervalBounds &b) {
@@ -121,7 +123,7 @@ int panel_order(double a, double h, const IntervalBounds &b) {
         for (size_t k = 1; k < v.size(); ++k) v[k] = std::log(static_cast<double>(k));
         return v;
     }();
-    const double log_eps = std::log(kPanelEps);
+    const double log_eps = b.log_eps;
     // Pole at y = −τ + i: with the foci at the panel ends, the ellipse through it has
     // ρ = α + √(α² − 1), α = (sum of the distances to the ends)/h.
     const double alpha = (std::sqrt((b.tau + a) * (b.tau + a) + 1.0) + std::sqrt((b.tau + a + h) * (b.tau + a + h) + 1.0)) / h;
@@ -162,13 +164,15 @@ struct RuleSet {
     std::vector<int> begin; // n_w + 1 offsets into y and weight
 };
 
-constexpr double kDroppedEfolds = 40.0; // e^{−40} ≈ 4e-18 of the interval's first term
+// Terms below e^{−k} of the interval's first term are dropped: k = ln(1/panel_eps) + 1 (one
+// e-fold of margin), at most 40 (4e-18: the default tolerance).
+double dropped_efolds(double panel_eps) { return std::min(40.0, std::log(1.0 / panel_eps) + 1.0); }
 
 RuleSet sweep_rule_set(const std::vector<double> &tau, const std::vector<double> &delta,
-                       const std::vector<double> &series_u_min, double u_lo, double u_cap) {
+                       const std::vector<double> &series_u_min, double u_lo, double u_cap, double panel_eps) {
     RuleSet s;
     const int n_w = static_cast<int>(tau.size());
-    const double h0_decay = 14.0 / u_cap, y_cut = kDroppedEfolds / u_lo;
+    const double h0_decay = 14.0 / u_cap, y_cut = dropped_efolds(panel_eps) / u_lo;
     for (int j = 0; j < n_w; ++j) {
         const double t = tau[static_cast<size_t>(j)];
         s.begin.push_back(static_cast<int>(s.y.size()));
@@ -177,7 +181,7 @@ RuleSet sweep_rule_set(const std::vector<double> &tau, const std::vector<double>
         const double pole_distance = std::sqrt(t * t + 1.0); // |τ + i|: the poles at y = −τ ± i
         const double ell = std::min(end, pole_distance);
         const double h0 = std::min(h0_decay, pole_distance);
-        const IntervalBounds bounds = interval_bounds(t, ell, u_cap);
+        const IntervalBounds bounds = interval_bounds(t, ell, u_cap, panel_eps);
         for (double a = 0; a < end;) {
             double h = (a == 0) ? h0 : a;
             if (a + h >= end || end - (a + h) < 0.25 * h) h = end - a; // no sliver at the end
@@ -203,7 +207,8 @@ template <class T> cl::Buffer input_buffer(Device &device, const std::vector<T> 
 
 } // namespace
 
-std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout) {
+std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout, double tolerance) {
+    const double panel_eps = kPanelShareOfTolerance * tolerance;
     const slut_axis &au = layout.axes[0].map;
     const slut_axis &aw = layout.axes[1].map;
     constexpr int kLanes = 8; // rows per work-item (double8)
@@ -262,7 +267,7 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
     std::vector<RuleSet> sets(set_cap.size());
     parallel_for(static_cast<int>(sets.size()), [&](int c) {
         const size_t k = static_cast<size_t>(c);
-        if (set_u_lo[k] < HUGE_VAL) sets[k] = sweep_rule_set(tau, delta, series_u_min, set_u_lo[k], set_cap[k]);
+        if (set_u_lo[k] < HUGE_VAL) sets[k] = sweep_rule_set(tau, delta, series_u_min, set_u_lo[k], set_cap[k], panel_eps);
     });
     std::vector<double> node_y, node_weight;
     std::vector<int> node_begin;
@@ -303,7 +308,7 @@ Table generate_airlight_table(Device &device, const AirlightPlan &plan, const Pr
                               const std::function<void(double)> &progress) {
     Table t = make_airlight_table_layout(plan);
     t.provenance = provenance;
-    t.values = integrate_airlight_ln_gs(device, t);
+    t.values = integrate_airlight_ln_gs(device, t, plan.integration_tolerance);
     if (progress) progress(1.0);
 
     // Accuracy: of the integration, of the storage type, and of sampling with the stored values.

@@ -65,7 +65,7 @@ Table make_nearlight_table_layout(const NearLightPlan &plan) {
 }
 
 std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout,
-                                             const std::function<void(double)> &progress) {
+                                             const std::function<void(double)> &progress, double tolerance) {
     const bool finite_thickness = layout.axes.size() == 4;
     const int n_T = layout.axes[0].map.count, n_g = layout.axes[1].map.count, n_r = layout.axes[2].map.count;
     const int n_S = finite_thickness ? layout.axes[3].map.count : 1;
@@ -80,7 +80,7 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
     const double inf = std::numeric_limits<double>::infinity();
     const slut_axis thick = {inf, inf, 0.0, SLUT_WARP_LINEAR, 1};
     set_axis_args(kernel, &arg, finite_thickness ? layout.axes[3].map : thick);
-    kernel.setArg(arg++, 1.0);
+    kernel.setArg(arg++, slut_nl_refine_for_tolerance(tolerance));
     const size_t groups = static_cast<size_t>((n_r + SLUT_NL_MAX_LANES - 1) / SLUT_NL_MAX_LANES);
     for (int iS = 0; iS < n_S; ++iS) { // one S layer at a time: progress on a terminal
         device.queue().enqueueNDRangeKernel(kernel, cl::NDRange(0, 0, static_cast<size_t>(iS) * n_T),
@@ -99,7 +99,7 @@ Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const 
                                const std::function<void(double)> &progress) {
     Table t = make_nearlight_table_layout(plan);
     t.provenance = provenance;
-    t.values = integrate_nearlight_ln_E(device, t, progress);
+    t.values = integrate_nearlight_ln_E(device, t, progress, plan.integration_tolerance);
 
     t.accuracy.integration_max_rel = measure_nearlight_integration(t, 400, 1);
     t.accuracy.storage_max_rel = storage_rounding_max_rel(t, t.storage);
