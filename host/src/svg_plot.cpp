@@ -117,6 +117,11 @@ std::string render_svg(const Plot &plot, int width_px, int height_px) {
         for (const auto &p : s.points) include(p);
     for (const auto &m : plot.markers) include(m.at);
     const bool empty = !(x_lo <= x_hi);
+    for (const auto &v : plot.vlines)
+        if (!empty && sx.shows(v.x)) {
+            x_lo = std::min(x_lo, v.x);
+            x_hi = std::max(x_hi, v.x);
+        }
     for (const auto &h : plot.hlines)
         if (!empty && sy.shows(h.y)) {
             y_lo = std::min(y_lo, h.y);
@@ -171,6 +176,14 @@ std::string render_svg(const Plot &plot, int width_px, int height_px) {
         o << "<text x=\"" << px(sx.p1 - 4) << "\" y=\"" << px(y - 4) << "\" text-anchor=\"end\" fill=\"#555555\">"
           << escape_xml(h.label) << "</text>\n";
     }
+    for (const auto &v : plot.vlines) {
+        if (!sx.shows(v.x)) continue;
+        const double x = sx.to_px(v.x);
+        o << "<line x1=\"" << px(x) << "\" y1=\"" << px(sy.p1) << "\" x2=\"" << px(x) << "\" y2=\"" << px(sy.p0)
+          << "\" stroke=\"#888888\" stroke-dasharray=\"6 4\"/>\n";
+        o << "<text transform=\"translate(" << px(x - 4) << " " << px(sy.p1 + 6) << ") rotate(-90)\" text-anchor=\"end\" "
+          << "fill=\"#555555\">" << escape_xml(v.label) << "</text>\n";
+    }
     for (size_t k = 0; k < plot.series.size(); ++k) {
         const PlotSeries &s = plot.series[k];
         const char *colour = kPalette[k % kPaletteSize];
@@ -180,11 +193,16 @@ std::string render_svg(const Plot &plot, int width_px, int height_px) {
             path += (path.empty() ? "M" : " L") + px(sx.to_px(p.x)) + " " + px(sy.to_px(p.y));
         }
         if (s.line && !path.empty())
-            o << "<path d=\"" << path << "\" fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.8\"/>\n";
-        for (const auto &p : s.points) {
+            o << "<path d=\"" << path << "\" fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.8\""
+              << (s.dashed ? " stroke-dasharray=\"3 3\"" : "") << "/>\n";
+        for (size_t i = 0; i < s.points.size(); ++i) {
+            const PlotPoint &p = s.points[i];
             if (!sx.shows(p.x) || !sy.shows(p.y)) continue;
             o << "<circle cx=\"" << px(sx.to_px(p.x)) << "\" cy=\"" << px(sy.to_px(p.y)) << "\" r=\"3.2\" fill=\""
               << colour << "\"/>\n";
+            if (i < s.point_labels.size() && !s.point_labels[i].empty())
+                o << "<text x=\"" << px(sx.to_px(p.x) + 5) << "\" y=\"" << px(sy.to_px(p.y) + 12) << "\" font-size=\"10\" "
+                  << "fill=\"" << colour << "\">" << escape_xml(s.point_labels[i]) << "</text>\n";
         }
         const double ly = top + 14 + 18.0 * static_cast<double>(k);
         o << "<line x1=\"" << px(sx.p1 + 14) << "\" y1=\"" << px(ly - 4) << "\" x2=\"" << px(sx.p1 + 34) << "\" y2=\""
@@ -201,6 +219,18 @@ std::string render_svg(const Plot &plot, int width_px, int height_px) {
     }
     o << "</svg>\n";
     return o.str();
+}
+
+std::vector<PlotPoint> pareto_front(std::vector<PlotPoint> points) {
+    std::sort(points.begin(), points.end(), [](const PlotPoint &a, const PlotPoint &b) {
+        return a.x < b.x || (a.x == b.x && a.y < b.y);
+    });
+    std::vector<PlotPoint> front;
+    for (const PlotPoint &p : points) {
+        if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
+        if (front.empty() || p.y < front.back().y) front.push_back(p);
+    }
+    return front;
 }
 
 } // namespace scatterlut
