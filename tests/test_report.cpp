@@ -66,17 +66,41 @@ void expect_svg(const std::string &path) {
     EXPECT_EQ(s.find("nan"), std::string::npos) << path;
 }
 
-// One report run shared by the tests below (it generates a dozen tables).
+// One report run per example scene, shared by the tests below (each generates a dozen tables).
+std::string run_report(const std::string &scene) {
+    const std::string d = slut_test::temp_stem("report_" + scene);
+    fs::remove_all(d);
+    const auto r = slut_test::run_scatterlut("report --scene " + kScenes + scene + ".toml --out " + d +
+                                             " --rounds 1 --queries 800");
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    return d;
+}
 const std::string &candle_report() {
-    static const std::string dir = [] {
-        const std::string d = slut_test::temp_stem("report_candle");
-        fs::remove_all(d);
-        const auto r = slut_test::run_scatterlut("report --scene " + kScenes + "candle_wax.toml --out " + d +
-                                                 " --rounds 1 --queries 800");
-        EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
-        return d;
-    }();
+    static const std::string dir = run_report("candle_wax");
     return dir;
+}
+const std::string &fog_report() {
+    static const std::string dir = run_report("fog_street");
+    return dir;
+}
+
+void expect_rungs_meet_their_tolerance(const std::string &csv) {
+    const auto rows = read_csv(csv);
+    ASSERT_GE(rows.size(), 6u) << csv;
+    double tightest = 1, tightest_error = 1;
+    int planned = 0;
+    for (const Row &r : rows) {
+        const double tol = num(r, "tolerance"), err = num(r, "max_node_rel_error");
+        EXPECT_LE(err, 10 * tol + 1e-14) << csv << ": tolerance " << tol;
+        EXPECT_GT(num(r, "generation_ms_median"), 0.0);
+        planned += r.at("planned") == "1";
+        if (tol < tightest) {
+            tightest = tol;
+            tightest_error = err;
+        }
+    }
+    EXPECT_EQ(planned, 1) << csv;
+    EXPECT_LE(tightest_error, 1e-12) << csv;
 }
 
 } // namespace
@@ -85,23 +109,29 @@ const std::string &candle_report() {
 // rule's error estimate being an estimate, and 1e-14 for the reference's own rounding);
 // the tightest rung is at round-off.
 TEST(Report, ToleranceRungsMeetTheirTolerance) {
-    const auto rows = read_csv(candle_report() + "/near_light_E3_tolerance.csv");
-    ASSERT_GE(rows.size(), 6u);
-    double tightest = 1, tightest_error = 1;
-    int planned = 0;
-    for (const Row &r : rows) {
-        const double tol = num(r, "tolerance"), err = num(r, "max_node_rel_error");
-        EXPECT_LE(err, 10 * tol + 1e-14) << "tolerance " << tol;
-        EXPECT_GT(num(r, "generation_ms_median"), 0.0);
-        planned += r.at("planned") == "1";
-        if (tol < tightest) {
-            tightest = tol;
-            tightest_error = err;
-        }
-    }
-    EXPECT_EQ(planned, 1);
-    EXPECT_LE(tightest_error, 1e-12);
+    expect_rungs_meet_their_tolerance(candle_report() + "/near_light_E3_tolerance.csv");
     expect_svg(candle_report() + "/near_light_E3_tolerance.svg");
+    expect_rungs_meet_their_tolerance(fog_report() + "/airlight_F_tolerance.csv");
+    expect_svg(fog_report() + "/airlight_F_tolerance.svg");
+}
+
+// The airlight report: the planned F table holds the fog's accepted error (0.005 in
+// fog_street.toml) over the scene's geometries, and exact and table are the two methods.
+TEST(Report, AirlightTableHoldsTheScenesError) {
+    const auto res = read_csv(fog_report() + "/airlight_F_resolution.csv");
+    bool planned = false;
+    for (const Row &r : res)
+        if (r.at("planned") == "1") {
+            planned = true;
+            EXPECT_LE(num(r, "radiance_max_rel"), 0.005);
+        }
+    EXPECT_TRUE(planned);
+    std::map<std::string, Row> m;
+    for (const Row &r : read_csv(fog_report() + "/airlight_F_methods.csv")) m[r.at("method")] = r;
+    ASSERT_EQ(m.size(), 2u);
+    EXPECT_LE(num(m.at("table"), "max_rel"), 0.005);
+    expect_svg(fog_report() + "/airlight_F_resolution.svg");
+    expect_svg(fog_report() + "/airlight_F_methods.svg");
 }
 
 // Resolution buys accuracy, f16 halves the bytes, and the planned table holds the scene's
