@@ -180,16 +180,41 @@ SLUT_FN double slut_gs_small_w(double w, double a) {
  *   G̃ = (1/w) Σ_k (−1)^k k! (sin w)^{k+1} sin((k+1) w) / u^{k+1}      (cos v = sin w)
  * an asymptotic series whose terms shrink by ≤ (k+1)/u: summed to its smallest term,
  * relative error ≲ 8!/u^8 ≈ 1e-10 at u = 48. Uniform in w. */
+#define SLUT_GS_SERIES_TERMS 12
+/* c_k(w) = (−1)^k k! (sin w)^{k+1} sin((k+1) w), k < SLUT_GS_SERIES_TERMS: w·G̃ ~ Σ_k c_k(w)/u^{k+1}. */
+SLUT_FN void slut_gs_large_u_coefficients(double w, double *c) {
+    double sw = sin(w), power = sw; /* k!·(sin w)^{k+1} */
+    for (int k = 0; k < SLUT_GS_SERIES_TERMS; ++k) {
+        double term = power * sin((double)(k + 1) * w);
+        c[k] = (k & 1) ? -term : term;
+        power *= sw * (double)(k + 1);
+    }
+}
+
 SLUT_FN double slut_gs_large_u(double u, double w) {
-    double sw = sin(w), x = sw / u, power = x, sum = 0.0, last = SLUT_HUGE_VAL;
-    for (int k = 0; k < 12; ++k) {
-        double term = power * sin((double)(k + 1) * w);      /* k!·(sin w/u)^{k+1}·sin((k+1)w) */
-        if (fabs(term) > last && k > 2) break;               /* asymptotic: stop at the smallest */
-        sum += (k & 1) ? -term : term;
+    double c[SLUT_GS_SERIES_TERMS];
+    slut_gs_large_u_coefficients(w, c);
+    double inv_u = 1.0 / u, power = inv_u, sum = 0.0, last = SLUT_HUGE_VAL;
+    for (int k = 0; k < SLUT_GS_SERIES_TERMS; ++k) {
+        double term = c[k] * power;                       /* c_k(w)/u^{k+1} */
+        if (fabs(term) > last && k > 2) break;            /* asymptotic: stop at the smallest */
+        sum += term;
         last = fabs(term);
-        power *= x * (double)(k + 1);
+        power *= inv_u;
     }
     return sum / w;
+}
+
+/* The same series at all SLUT_GS_SERIES_TERMS = 12 terms for every u ≥ slut_gs_series_u_min(w): Watson's
+ * remainder is ≤ sup|f^{(12)}|/u^{13} ≤ 12! (sin w)^{13}/u^{13} (|τ + y + i| ≥ 1/sin w), and
+ * w·G̃ ≥ 0.63 f(τ + 1/u)/u ≳ ½ sin² w/u, so the relative error is
+ * ≤ 2·12! (sin w)^{11}/u^{12} ≤ 1e-16 there. (w = 1e-3: u ≥ 0.26; w = 0.1: u ≥ 15;
+ * w = π/2: u ≥ 120.) The table generator uses it wherever the layer at ξ = v is too thin
+ * for a quadrature rule to be cheap (kernels/airlight_F.cl). */
+SLUT_FN double slut_gs_series_u_min(double w) {
+    double sw = sin(w);
+    /* (2·12!·sin^11 w / 1e-16)^{1/12}, 12! = 479001600 */
+    return exp((log(2.0 * 479001600.0 / 1e-16) + 11.0 * log(sw)) / 12.0);
 }
 
 /* ------------------------------------------------------------- airlight geometry */

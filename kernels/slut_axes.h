@@ -99,15 +99,18 @@ SLUT_FN double slut_warp_inverse(int warp, double y, double p_min, double scale)
     }
 }
 
-/* Parameter → unit coordinate x ∈ [0, 1], for an axis [p_min, p_max] with this warp. The
-   parameter is clamped to the axis first (clamp-to-edge): a warp need not be defined
+/* Parameter → unit coordinate x ∈ [0, 1], for an axis [p_min, p_max] with this warp, whose
+   warped ends g0 = g(p_min), g1 = g(p_max) a sampler may compute once. The parameter is clamped to the axis first (clamp-to-edge): a warp need not be defined
    beyond the ends (LOG1P below p_min − scale, LOG at p ≤ 0), and NaN goes to p_min, so
    that no parameter can give a node index outside the table. */
-SLUT_FN double slut_unit_from_warp(int warp, double p, double p_min, double p_max, double scale) {
+SLUT_FN double slut_unit_from_warped_ends(int warp, double p, double p_min, double p_max, double scale, double g0,
+                                          double g1) {
     double q = (p > p_min) ? ((p < p_max) ? p : p_max) : p_min;
-    double g0 = slut_warp_forward(warp, p_min, p_min, scale);
-    double g1 = slut_warp_forward(warp, p_max, p_min, scale);
     return (slut_warp_forward(warp, q, p_min, scale) - g0) / (g1 - g0);
+}
+SLUT_FN double slut_unit_from_warp(int warp, double p, double p_min, double p_max, double scale) {
+    return slut_unit_from_warped_ends(warp, p, p_min, p_max, scale, slut_warp_forward(warp, p_min, p_min, scale),
+                                      slut_warp_forward(warp, p_max, p_min, scale));
 }
 
 /* Unit coordinate → GPU texture coordinate (texel centres at the domain ends). */
@@ -138,6 +141,18 @@ typedef struct slut_axis {
     int warp;     /* SLUT_WARP_* */
     int count;    /* nodes, ≥ 2 */
 } slut_axis;
+
+/* The warped ends g(min), g(max) of an axis. They are constant per axis: a sampler that
+   looks up many points computes them once and calls slut_unit_from_warped. */
+SLUT_FN void slut_axis_warped_ends(const slut_axis *a, double *g0, double *g1) {
+    *g0 = slut_warp_forward(a->warp, a->min, a->min, a->scale);
+    *g1 = slut_warp_forward(a->warp, a->max, a->min, a->scale);
+}
+
+/* Parameter → unit coordinate x ∈ [0, 1] given the axis's warped ends (as slut_unit_from_warp). */
+SLUT_FN double slut_unit_from_warped(const slut_axis *a, double p, double g0, double g1) {
+    return slut_unit_from_warped_ends(a->warp, p, a->min, a->max, a->scale, g0, g1);
+}
 
 /* Parameter → unit coordinate x ∈ [0, 1] (the parameter clamped to the axis). */
 SLUT_FN double slut_unit_from_param(const slut_axis *a, double p) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <chrono>
 #include <random>
 #include <thread>
 #include <vector>
@@ -33,35 +34,284 @@ Table make_airlight_table_layout(const AirlightPlan &plan) {
     return t;
 }
 
+namespace {
+
+// ------------------------------------------------------------------ quadrature nodes of the sweep
+
+// m-point Gauss–Legendre rule on [−1, 1]: Newton's iteration on P_m from the
+// Tricomi-style initial guesses cos(π(k − ¼)/(m + ½)), converged to rounding
+// (Numerical Recipes §4.6, gauleg). Nodes ascending.
+struct GaussLegendre {
+    std::vector<double> x, w;
+};
+
+GaussLegendre gauss_legendre(int m) {
+    GaussLegendre r;
+    r.x.resize(static_cast<size_t>(m));
+    r.w.resize(static_cast<size_t>(m));
+    for (int k = 0; k < (m + 1) / 2; ++k) {
+        double z = std::cos(SLUT_PI * (k + 0.75) / (m + 0.5)), dp = 0;
+        for (int it = 0; it < 100; ++it) {
+            double p0 = 1, p1 = 0;
+            for (int n = 1; n <= m; ++n) { // P_n(z) = ((2n−1) z P_{n−1} − (n−1) P_{n−2})/n
+                const double p2 = p1;
+                p1 = p0;
+                p0 = ((2.0 * n - 1.0) * z * p1 - (n - 1.0) * p2) / n;
+            }
+            dp = m * (z * p0 - p1) / (z * z - 1.0); // P_m'(z)
+            const double dz = p0 / dp;
+            z -= dz;
+            if (std::fabs(dz) < 1e-17) break;
+        }
+        const double weight = 2.0 / ((1.0 - z * z) * dp * dp);
+        r.x[static_cast<size_t>(k)] = -z;
+        r.x[static_cast<size_t>(m - 1 - k)] = z;
+        r.w[static_cast<size_t>(k)] = r.w[static_cast<size_t>(m - 1 - k)] = weight;
+    }
+    return r;
+}
+
+constexpr int kMaxOrder = 16;
+
+const GaussLegendre &gauss_legendre_cached(int m) {
+    static const std::vector<GaussLegendre> rules = [] {
+        std::vector<GaussLegendre> v(kMaxOrder + 1);
+        for (int k = 1; k <= kMaxOrder; ++k) v[static_cast<size_t>(k)] = gauss_legendre(k);
+        return v;
+    }();
+    return rules[static_cast<size_t>(m)];
+}
+
+// ln C_m, C_m = (m!)^4 / ((2m + 1) ((2m)!)^3): the m-point Gauss–Legendre error on a panel of
+// length h is h^{2m+1} C_m f^{(2m)}(ξ) (Abramowitz & Stegun 25.4.30).
+double log_gl_error_constant(int m) {
+    static const std::vector<double> table = [] {
+        std::vector<double> v(kMaxOrder + 1);
+        for (int k = 1; k <= kMaxOrder; ++k)
+            v[static_cast<size_t>(k)] = 4.0 * std::lgamma(k + 1.0) - std::log(2.0 * k + 1.0) - 3.0 * std::lgamma(2.0 * k + 1.0);
+        return v;
+    }();
+    return table[static_cast<size_t>(m)];
+}
+
+// The smallest order m ≤ kMaxOrder (0 if none) whose error on the panel [a, a + h] of
+//   ∫ e^{−u y} / (1 + (τ + y)²) dy,  every u ∈ (0, u_max],
+// is below the panel bound e^{log_eps} of the integral it belongs to, and the order for which this holds.
+//  * Exponential factor: |f^{(2m)}| ≤ u^{2m} e^{−u a}, so the absolute error is
+//    ≤ C_m h (u h)^{2m} e^{−u a} · f(a); the interval's integral is at least
+//    ~0.63 f(τ)·min(ℓ, 1/u) (ℓ = min(Δ, |τ + i|): f halves over |τ + i|). The ratio,
+//    ∝ u^{2m} max(u, 1/ℓ) e^{−u a}, is maximised in closed form over u ∈ (0, u_max].
+//  * The poles of 1/(1 + t²) at y = −τ ± i: Bernstein ellipse ρ of the panel through them,
+//    error ≲ 64/(15(ρ² − 1)) ρ^{−2m} relative (Trefethen, ATAP ch. 19).
+// The panel bound is 1e-4 of the table's integration tolerance (the plan's; 1e-13 by
+// default: panels at 1e-17). Measured, not assumed: the achieved node error reaches up to
+// ~4e3 × the panel bound (at bounds 1e-10 … 1e-8; the pole term takes the ellipse through
+// the pole, where the integrand is unbounded, so it is optimistic), and 1e-4 keeps every
+// rung of the tolerance ladder 1e-3 … 1e-13 within its tolerance (`scatterlut report`,
+// tests/test_report.cpp).
+constexpr double kPanelShareOfTolerance = 1e-4;
+
+// Everything panel_order needs that does not change along one interval.
+struct IntervalBounds {
+    double tau, log_ell, log_inv_ell, u_split, log_u_split, u_max, log_u_max, log_eps;
+};
+
+IntervalBounds interval_bounds(double tau, double ell, double u_max, double panel_eps) {
+    const double u_split = std::min(1.0 / ell, u_max);
+    return {tau, std::log(ell), -std::log(ell), u_split, std::log(u_split), u_max, std::log(u_max), std::log(panel_eps)};
+}
+
+int panel_order(double a, double h, const IntervalBounds &b) {
+    static const std::vector<double> log_int = [] { // ln k, k ≤ 2·kMaxOrder + 1
+        std::vector<double> v(2 * kMaxOrder + 2, 0.0);
+        for (size_t k = 1; k < v.size(); ++k) v[k] = std::log(static_cast<double>(k));
+        return v;
+    }();
+    const double log_eps = b.log_eps;
+    // Pole at y = −τ + i: with the foci at the panel ends, the ellipse through it has
+    // ρ = α + √(α² − 1), α = (sum of the distances to the ends)/h.
+    const double alpha = (std::sqrt((b.tau + a) * (b.tau + a) + 1.0) + std::sqrt((b.tau + a + h) * (b.tau + a + h) + 1.0)) / h;
+    const double rho = alpha + std::sqrt(alpha * alpha - 1.0);
+    const double log_rho = std::log(rho), log_pole_pref = std::log(64.0 / (15.0 * (rho * rho - 1.0)));
+    const int m_pole = static_cast<int>(std::ceil((log_pole_pref - log_eps) / (2.0 * log_rho)));
+    const double log_h = std::log(h), log_a = a > 0 ? std::log(a) : 0.0;
+    for (int m = std::max(2, m_pole); m <= kMaxOrder; ++m) {
+        // max over u of u^{2m} max(u, 1/ℓ) e^{−ua}: two monotone pieces, each at its
+        // stationary point (2m/a resp. (2m + 1)/a) clamped to its range.
+        double log_worst;
+        if (a > 0 && 2.0 * m / a < b.u_split) log_worst = 2.0 * m * (log_int[2 * m] - log_a) + b.log_inv_ell - 2.0 * m;
+        else log_worst = 2.0 * m * b.log_u_split + b.log_inv_ell - b.u_split * a;
+        if (b.u_split < b.u_max) {
+            const double u_star = a > 0 ? (2.0 * m + 1) / a : HUGE_VAL;
+            double other;
+            if (u_star >= b.u_max) other = (2.0 * m + 1) * b.log_u_max - b.u_max * a;
+            else if (u_star <= b.u_split) other = (2.0 * m + 1) * b.log_u_split - b.u_split * a;
+            else other = (2.0 * m + 1) * (log_int[2 * m + 1] - log_a) - (2.0 * m + 1);
+            log_worst = std::max(log_worst, other);
+        }
+        const double log_err = log_gl_error_constant(m) + (2.0 * m + 1.0) * log_h + log_worst - std::log(0.63);
+        if (log_err <= log_eps) return m;
+    }
+    return 0; // no order suffices: the panel is too long
+}
+
+// The nodes of all intervals of the sweep (see kernels/airlight_F.cl) for rows with
+// u ∈ [u_lo, u_cap]. Interval j covers y ∈ [0, Δ_j] (Δ_0 = ∞), cut where u_lo·y = 40 (the
+// kernel drops the same terms): panels [0, h0], [h0, 2h0], [2h0, 4h0], … (the last one cut
+// at the end), h0 = min(14/u_cap, |τ_j + i|) (16-point Gauss–Legendre integrates 14 e-folds
+// of e^{−u y} to ~1e-17; doubling panels then see u·a e-folds behind them and as many
+// across, a product that stays below 1e-18 for every u; the first panel keeps the poles
+// at y = −τ ± i a panel length away), each panel at the lowest order panel_order allows.
+// Weights carry the Lorentzian 1/(1 + (τ_j + y)²), so the kernel forms Σ W e^{−u y}.
+struct RuleSet {
+    std::vector<double> y, weight;
+    std::vector<int> begin; // n_w + 1 offsets into y and weight
+};
+
+constexpr double kDroppedEfolds = 40.0; // e^{−40} ≈ 4e-18 of the interval's first term
+
+RuleSet sweep_rule_set(const std::vector<double> &tau, const std::vector<double> &delta,
+                       const std::vector<double> &series_u_min, double u_lo, double u_cap, double panel_eps) {
+    RuleSet s;
+    const int n_w = static_cast<int>(tau.size());
+    const double h0_decay = 14.0 / u_cap, y_cut = kDroppedEfolds / u_lo;
+    for (int j = 0; j < n_w; ++j) {
+        const double t = tau[static_cast<size_t>(j)];
+        s.begin.push_back(static_cast<int>(s.y.size()));
+        if (u_lo >= series_u_min[static_cast<size_t>(j)]) continue; // every item of the set uses the series
+        const double end = (j > 0) ? std::min(delta[static_cast<size_t>(j)], y_cut) : y_cut;
+        const double pole_distance = std::sqrt(t * t + 1.0); // |τ + i|: the poles at y = −τ ± i
+        const double ell = std::min(end, pole_distance);
+        const double h0 = std::min(h0_decay, pole_distance);
+        const IntervalBounds bounds = interval_bounds(t, ell, u_cap, panel_eps);
+        for (double a = 0; a < end;) {
+            double h = (a == 0) ? h0 : a;
+            if (a + h >= end || end - (a + h) < 0.25 * h) h = end - a; // no sliver at the end
+            int order = panel_order(a, h, bounds);
+            while (order == 0) order = panel_order(a, h *= 0.5, bounds); // near a pole: shorter
+            const GaussLegendre &rule = gauss_legendre_cached(order);
+            for (size_t k = 0; k < rule.x.size(); ++k) {
+                const double y = a + 0.5 * h * (1.0 + rule.x[k]), ty = t + y;
+                s.y.push_back(y);
+                s.weight.push_back(0.5 * h * rule.w[k] / (1.0 + ty * ty));
+            }
+            a = (h == end - a) ? end : a + h; // the last panel ends exactly at the end
+        }
+    }
+    s.begin.push_back(static_cast<int>(s.y.size()));
+    return s;
+}
+
+template <class T> cl::Buffer input_buffer(Device &device, const std::vector<T> &v) {
+    return cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, v.size() * sizeof(T),
+                      const_cast<T *>(v.data()));
+}
+
+} // namespace
+
+std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout, double tolerance) {
+    const double panel_eps = kPanelShareOfTolerance * tolerance;
+    const slut_axis &au = layout.axes[0].map;
+    const slut_axis &aw = layout.axes[1].map;
+    constexpr int kLanes = 8; // rows per work-item (double8)
+    const int row_stride = (au.count + kLanes - 1) / kLanes * kLanes;
+    const int items = row_stride / kLanes;
+    std::vector<double> u_rows(static_cast<size_t>(row_stride));
+    double u_min_positive = HUGE_VAL;
+    for (int i = 0; i < row_stride; ++i) {
+        const double u = slut_axis_node(&au, std::min(i, au.count - 1)); // padding repeats the last row
+        u_rows[static_cast<size_t>(i)] = u;
+        if (u > 0) u_min_positive = std::min(u_min_positive, u);
+    }
+    if (!(u_min_positive < HUGE_VAL)) u_min_positive = 1.0; // every row u = 0: the rule is unused
+
+    // τ_j = cot w_j and Δ_j = τ_{j−1} − τ_j. τ_{j−1}/τ_j ≤ 2 on fine axes, where the
+    // difference is exact (Sterbenz): consecutive intervals meet without a gap.
+    std::vector<double> w_nodes(static_cast<size_t>(aw.count)), tau(w_nodes.size()), delta(w_nodes.size(), 0.0);
+    for (int j = 0; j < aw.count; ++j) {
+        const size_t k = static_cast<size_t>(j);
+        w_nodes[k] = slut_axis_node(&aw, j);
+        tau[k] = std::cos(w_nodes[k]) / std::sin(w_nodes[k]); // as slut_w_gs_quadrature forms it
+        if (j > 0) delta[k] = tau[k - 1] - tau[k];
+    }
+    // Where the large-u series holds (slut_gs_series_u_min) it replaces the rule.
+    std::vector<double> series_u_min(w_nodes.size()), series_coef(w_nodes.size() * SLUT_GS_SERIES_TERMS);
+    for (size_t k = 0; k < w_nodes.size(); ++k) {
+        series_u_min[k] = slut_gs_series_u_min(w_nodes[k]);
+        slut_gs_large_u_coefficients(w_nodes[k], &series_coef[k * SLUT_GS_SERIES_TERMS]);
+    }
+
+    // Rule sets for rows u ≤ cap_c = u_max/4^c: a row of small u needs no panels for a
+    // layer of width 1/u_max, so each work-item takes the set of the smallest cap above its
+    // largest u. Below cap ~ 1/(4 max Δ) every layer fits in its interval's first panel and
+    // the poles alone set the rule: smaller caps would repeat it.
+    std::vector<int> item_set(static_cast<size_t>(items), 0);
+    std::vector<double> set_cap;
+    const double delta_max = *std::max_element(delta.begin(), delta.end());
+    double cap = std::max(au.max, u_rows.back());
+    for (bool last = false; !last; cap *= 0.25) {
+        last = cap < u_min_positive || cap * delta_max < 0.25;
+        bool used = false;
+        for (int k = 0; k < items; ++k) {
+            if (u_rows[static_cast<size_t>(kLanes * k + kLanes - 1)] > cap) continue; // lane 7: the largest u
+            item_set[static_cast<size_t>(k)] = static_cast<int>(set_cap.size());
+            used = true;
+        }
+        if (used) set_cap.push_back(cap);
+    }
+    // Each set's rule needs to hold only down to the smallest u of the items it serves
+    // (lane 0: rows ascend); sets that smaller caps took over entirely are left empty.
+    std::vector<double> set_u_lo(set_cap.size(), HUGE_VAL);
+    for (int k = 0; k < items; ++k) {
+        double &lo = set_u_lo[static_cast<size_t>(item_set[static_cast<size_t>(k)])];
+        lo = std::min(lo, std::max(u_rows[static_cast<size_t>(kLanes * k)], u_min_positive));
+    }
+    std::vector<RuleSet> sets(set_cap.size());
+    parallel_for(static_cast<int>(sets.size()), [&](int c) {
+        const size_t k = static_cast<size_t>(c);
+        if (set_u_lo[k] < HUGE_VAL) sets[k] = sweep_rule_set(tau, delta, series_u_min, set_u_lo[k], set_cap[k], panel_eps);
+    });
+    std::vector<double> node_y, node_weight;
+    std::vector<int> node_begin;
+    for (RuleSet &set : sets) {
+        if (set.begin.empty()) set.begin.assign(tau.size() + 1, 0); // a set no item uses
+        for (int b0 : set.begin) node_begin.push_back(b0 + static_cast<int>(node_y.size()));
+        node_y.insert(node_y.end(), set.y.begin(), set.y.end());
+        node_weight.insert(node_weight.end(), set.weight.begin(), set.weight.end());
+    }
+
+    cl::Program &program = device.program("airlight_F.cl");
+    cl::Kernel kernel(program, "airlight_ln_gs_sweep");
+    // Output straight into the table's values (CL_MEM_USE_HOST_PTR, then a map): no copy.
+    std::vector<double> values(static_cast<size_t>(au.count) * static_cast<size_t>(aw.count));
+    cl::Buffer out(device.context(), CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR, values.size() * sizeof(double),
+                   values.data());
+    const cl::Buffer b_u = input_buffer(device, u_rows), b_w = input_buffer(device, w_nodes),
+                     b_delta = input_buffer(device, delta), b_set = input_buffer(device, item_set),
+                     b_begin = input_buffer(device, node_begin), b_y = input_buffer(device, node_y),
+                     b_weight = input_buffer(device, node_weight), b_series_u = input_buffer(device, series_u_min),
+                     b_series_c = input_buffer(device, series_coef);
+    int arg = 0;
+    kernel.setArg(arg++, out);
+    kernel.setArg(arg++, au.count);
+    kernel.setArg(arg++, aw.count);
+    for (const cl::Buffer *b : {&b_u, &b_w, &b_delta, &b_set, &b_begin, &b_y, &b_weight, &b_series_u, &b_series_c})
+        kernel.setArg(arg++, *b);
+    // Few, heavy work-items: a small local size spreads them over the cores (POCL-NOTES.md).
+    device.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(static_cast<size_t>(items)), cl::NDRange(1));
+    void *mapped = device.queue().enqueueMapBuffer(out, CL_TRUE, CL_MAP_READ, 0, values.size() * sizeof(double));
+    device.queue().enqueueUnmapMemObject(out, mapped);
+    device.queue().finish();
+    device.kernels_ran("airlight_F.cl");
+    return values;
+}
+
 Table generate_airlight_table(Device &device, const AirlightPlan &plan, const Provenance &provenance,
                               const std::function<void(double)> &progress) {
     Table t = make_airlight_table_layout(plan);
     t.provenance = provenance;
-    const slut_axis &au = t.axes[0].map;
-    const slut_axis &aw = t.axes[1].map;
-    const size_t n = static_cast<size_t>(au.count) * static_cast<size_t>(aw.count);
-
-    cl::Program &program = device.program("airlight_F.cl");
-    cl::Kernel kernel(program, "airlight_ln_gs");
-    cl::Buffer out(device.context(), CL_MEM_WRITE_ONLY, n * sizeof(double));
-    int arg = 0;
-    kernel.setArg(arg++, out);
-    set_axis_args(kernel, &arg, au);
-    set_axis_args(kernel, &arg, aw);
-    kernel.setArg(arg++, 1.0); // refine: the production rule
-    // Rows in slices so that a terminal can show progress on large tables.
-    const int rows_per_slice = std::max(1, aw.count / 16);
-    for (int j0 = 0; j0 < aw.count; j0 += rows_per_slice) {
-        const int rows = std::min(rows_per_slice, aw.count - j0);
-        device.queue().enqueueNDRangeKernel(kernel, cl::NDRange(0, static_cast<size_t>(j0)),
-                                            cl::NDRange(static_cast<size_t>(au.count), static_cast<size_t>(rows)),
-                                            cl::NullRange);
-        device.queue().finish();
-        if (progress) progress(static_cast<double>(j0 + rows) / aw.count);
-    }
-    std::vector<double> values(n);
-    device.queue().enqueueReadBuffer(out, CL_TRUE, 0, n * sizeof(double), values.data());
-    t.values = std::move(values);
+    t.values = integrate_airlight_ln_gs(device, t, plan.integration_tolerance);
+    if (progress) progress(1.0);
 
     // Accuracy: of the integration, of the storage type, and of sampling with the stored values.
     t.accuracy.integration_max_rel = measure_airlight_integration(t, 400, 1);

@@ -64,33 +64,42 @@ Table make_nearlight_table_layout(const NearLightPlan &plan) {
     return t;
 }
 
-Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const Provenance &provenance,
-                               const std::function<void(double)> &progress) {
-    Table t = make_nearlight_table_layout(plan);
-    t.provenance = provenance;
-    const int n_S = plan.finite_thickness ? plan.n_S : 1;
-    const size_t n = t.node_count();
+std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout,
+                                             const std::function<void(double)> &progress, double tolerance) {
+    const bool finite_thickness = layout.axes.size() == 4;
+    const int n_T = layout.axes[0].map.count, n_g = layout.axes[1].map.count, n_r = layout.axes[2].map.count;
+    const int n_S = finite_thickness ? layout.axes[3].map.count : 1;
+    const size_t n = layout.node_count();
     cl::Program &program = device.program("nearlight_E.cl");
     cl::Kernel kernel(program, "nearlight_ln_E");
     cl::Buffer out(device.context(), CL_MEM_WRITE_ONLY, n * sizeof(double));
     int arg = 0;
     kernel.setArg(arg++, out);
-    for (size_t a = 0; a < 3; ++a) set_axis_args(kernel, &arg, t.axes[a].map);
+    for (size_t a = 0; a < 3; ++a) set_axis_args(kernel, &arg, layout.axes[a].map);
     // A thick table has no S axis: the kernel reads one layer at S = +inf.
     const double inf = std::numeric_limits<double>::infinity();
     const slut_axis thick = {inf, inf, 0.0, SLUT_WARP_LINEAR, 1};
-    set_axis_args(kernel, &arg, plan.finite_thickness ? t.axes[3].map : thick);
-    kernel.setArg(arg++, 1.0);
-    const size_t groups = static_cast<size_t>((plan.n_r + SLUT_NL_MAX_LANES - 1) / SLUT_NL_MAX_LANES);
+    set_axis_args(kernel, &arg, finite_thickness ? layout.axes[3].map : thick);
+    kernel.setArg(arg++, slut_nl_refine_for_tolerance(tolerance));
+    const size_t groups = static_cast<size_t>((n_r + SLUT_NL_MAX_LANES - 1) / SLUT_NL_MAX_LANES);
     for (int iS = 0; iS < n_S; ++iS) { // one S layer at a time: progress on a terminal
-        device.queue().enqueueNDRangeKernel(kernel, cl::NDRange(0, 0, static_cast<size_t>(iS) * plan.n_T),
-                                            cl::NDRange(groups, static_cast<size_t>(plan.n_g), static_cast<size_t>(plan.n_T)),
+        device.queue().enqueueNDRangeKernel(kernel, cl::NDRange(0, 0, static_cast<size_t>(iS) * n_T),
+                                            cl::NDRange(groups, static_cast<size_t>(n_g), static_cast<size_t>(n_T)),
                                             cl::NullRange);
         device.queue().finish();
         if (progress) progress(static_cast<double>(iS + 1) / n_S);
     }
-    t.values.resize(n);
-    device.queue().enqueueReadBuffer(out, CL_TRUE, 0, n * sizeof(double), t.values.data());
+    std::vector<double> values(n);
+    device.queue().enqueueReadBuffer(out, CL_TRUE, 0, n * sizeof(double), values.data());
+    device.kernels_ran("nearlight_E.cl");
+    return values;
+}
+
+Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const Provenance &provenance,
+                               const std::function<void(double)> &progress) {
+    Table t = make_nearlight_table_layout(plan);
+    t.provenance = provenance;
+    t.values = integrate_nearlight_ln_E(device, t, progress, plan.integration_tolerance);
 
     t.accuracy.integration_max_rel = measure_nearlight_integration(t, 400, 1);
     t.accuracy.storage_max_rel = storage_rounding_max_rel(t, t.storage);

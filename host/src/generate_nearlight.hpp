@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "generate_airlight.hpp" // SamplingStats
 #include "opencl_device.hpp"
@@ -11,6 +12,10 @@
 #include "scatterlut/table.hpp"
 
 namespace scatterlut {
+
+// The integration tolerance of production tables (relative, on E): the kernel's panel rule
+// at refine = 1 (slut_nl_refine_for_tolerance), which measures ~1e-15.
+inline constexpr double kNearLightIntegrationTolerance = 1e-14;
 
 struct NearLightPlan {
     bool finite_thickness = false; // false: 3-D (S = ∞); true: 4-D with a slab axis q
@@ -21,6 +26,7 @@ struct NearLightPlan {
     double g_scale = 0.0;
     double r_max = 1e3, r_scale = 1e-6; // μ_l/μ_e, log1p axis including r = 0
     double S_min = 1e-3, S_max = 20.0;  // σ_t·s, slab axis q (4-D only); outside: exact
+    double integration_tolerance = kNearLightIntegrationTolerance;
     int n_T = 96, n_g = 80, n_r = 64, n_S = 17; // node counts; the defaults: docs/NEARLIGHT.md
     Storage storage = Storage::F32;
 };
@@ -31,6 +37,13 @@ struct NearLightPlan {
 NearLightPlan default_near_light_plan(bool finite_thickness);
 
 Table make_nearlight_table_layout(const NearLightPlan &plan);
+
+// ln E at every node of the layout's axes (axis 0 fastest) on the device; no accuracy
+// measurement. progress(fraction done) may be empty.
+// `tolerance`: relative, on E (the kernel's refine = slut_nl_refine_for_tolerance).
+std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout,
+                                             const std::function<void(double)> &progress = {},
+                                             double tolerance = kNearLightIntegrationTolerance);
 
 Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const Provenance &provenance,
                                const std::function<void(double)> &progress = {});

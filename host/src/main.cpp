@@ -16,6 +16,7 @@
 #include "eval.hpp"
 #include "inspect.hpp"
 #include "validate.hpp"
+#include "report.hpp"
 #include "scene_commands.hpp"
 #include "opencl_device.hpp"
 #include "scatterlut/io.hpp"
@@ -105,6 +106,7 @@ int main(int argc, char **argv) {
     setup_eval(app, exit_code);
     setup_validate(app, exit_code);
     setup_inspect(app, exit_code);
+    setup_report(app, exit_code, g_command_line);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError &e) {

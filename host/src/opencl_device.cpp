@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <list>
 #include <cctype>
+#include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "embedded_kernels.hpp"
+#include "scatterlut/io.hpp"
 
 namespace scatterlut {
 namespace {
@@ -164,27 +167,89 @@ Device::Device(const std::string &selector_in) {
     queue_ = cl::CommandQueue(context_, device_);
 }
 
-cl::Program &Device::program(const std::string &cl_file) {
-    for (auto &entry : programs_)
-        if (entry.first == cl_file) return entry.second;
-    const std::string source = embedded_source(cl_file);
-    const std::string options = "-cl-std=CL1.2";
-    cl::Program program(context_, source);
+namespace {
+
+// Builds `program` for `device`, turning a failure into a DeviceError with the build log.
+void build_or_throw(cl::Program &program, const cl::Device &device, const DeviceInfo &info, const std::string &cl_file,
+                    const std::string &options) {
     try {
-        program.build(std::vector<cl::Device>{device_}, options.c_str());
+        program.build(std::vector<cl::Device>{device}, options.c_str());
     } catch (const cl::Error &) {
         std::string log;
         try {
-            log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
+            log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device);
         } catch (const cl::Error &) {
             log = "(no build log available)";
         }
-        throw DeviceError("OpenCL build of " + cl_file + " failed\n  platform: " + info_.platform_name +
-                          "\n  device:   " + info_.device_name + " (" + info_.device_version + ", driver " +
-                          info_.driver_version + ")\n  options:  " + options + "\n  build log:\n" + log);
+        throw DeviceError("OpenCL build of " + cl_file + " failed\n  platform: " + info.platform_name +
+                          "\n  device:   " + info.device_name + " (" + info.device_version + ", driver " +
+                          info.driver_version + ")\n  options:  " + options + "\n  build log:\n" + log);
     }
-    programs_.emplace_back(cl_file, std::move(program));
-    return programs_.back().second;
+}
+
+} // namespace
+
+cl::Program &Device::program(const std::string &cl_file) {
+    for (auto &entry : programs_)
+        if (entry.file == cl_file) return entry.program;
+    const std::string source = embedded_source(cl_file);
+    const std::string options = "-cl-std=CL1.2";
+    char source_hash[40];
+    std::snprintf(source_hash, sizeof source_hash, "%016llx/%zu",
+                  static_cast<unsigned long long>(fnv1a64(source.data(), source.size())), source.size());
+    ProgramEntry entry{cl_file, cl::Program(),
+                       ProgramCache("scatterlut program cache v1\nfile: " + cl_file + "\nplatform: " +
+                                    info_.platform_name + "\ndevice: " + info_.device_name +
+                                    "\ndevice version: " + info_.device_version + "\ndriver: " +
+                                    info_.driver_version + "\noptions: " + options + "\nsource: " + source_hash),
+                       ProgramOrigin::Source, 0};
+    if (std::optional<std::vector<uint8_t>> binary = entry.cache.load()) {
+        try {
+            std::vector<cl_int> status;
+            cl::Program cached(context_, std::vector<cl::Device>{device_},
+                               cl::Program::Binaries{std::vector<unsigned char>(binary->begin(), binary->end())},
+                               &status);
+            cached.build(std::vector<cl::Device>{device_}, options.c_str());
+            entry.program = std::move(cached);
+            entry.origin = ProgramOrigin::Cache;
+            entry.binary_size = binary->size();
+        } catch (const cl::Error &e) {
+            entry.cache.log(std::string("ignored (the driver rejected the binary: ") + e.what() + " " +
+                            std::to_string(e.err()) + "); building from source");
+        }
+    }
+    if (entry.origin == ProgramOrigin::Source) {
+        entry.program = cl::Program(context_, source);
+        build_or_throw(entry.program, device_, info_, cl_file, options);
+    }
+    programs_.push_back(std::move(entry));
+    return programs_.back().program;
+}
+
+ProgramOrigin Device::program_origin(const std::string &cl_file) const {
+    for (const auto &entry : programs_)
+        if (entry.file == cl_file) return entry.origin;
+    return ProgramOrigin::None;
+}
+
+void Device::kernels_ran(const std::string &cl_file) {
+    for (auto &entry : programs_) {
+        if (entry.file != cl_file || !entry.cache.enabled()) continue;
+        // PoCL compiles a work-group function per launch shape at the first enqueue that
+        // needs it, so the binary grows as new shapes run: store it whenever its size
+        // differs from the one stored or loaded (a size query; the binary only then).
+        try {
+            const std::vector<size_t> sizes = entry.program.getInfo<CL_PROGRAM_BINARY_SIZES>();
+            if (sizes.size() != 1 || sizes[0] == 0 || sizes[0] == entry.binary_size) return;
+            const std::vector<std::vector<unsigned char>> binaries = entry.program.getInfo<CL_PROGRAM_BINARIES>();
+            if (binaries.size() != 1 || binaries[0].empty()) return;
+            entry.cache.store(std::vector<uint8_t>(binaries[0].begin(), binaries[0].end()));
+            entry.binary_size = binaries[0].size();
+        } catch (const cl::Error &e) {
+            entry.cache.log(std::string("not stored (") + e.what() + ")");
+        }
+        return;
+    }
 }
 
 } // namespace scatterlut

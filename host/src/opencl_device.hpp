@@ -8,6 +8,8 @@
 
 #include <CL/opencl.hpp>
 
+#include "program_cache.hpp"
+
 namespace scatterlut {
 
 struct DeviceInfo {
@@ -32,6 +34,10 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// Where a program came from: not built yet, compiled from the embedded source, or loaded
+// from the program binary cache (program_cache.hpp).
+enum class ProgramOrigin { None, Source, Cache };
+
 // A context + queue on one device, and the program built from the embedded kernels.
 class Device {
 public:
@@ -46,15 +52,29 @@ public:
     cl::CommandQueue &queue() { return queue_; }
 
     // The program of one embedded .cl file (its #include "…" lines resolved against
-    // the embedded headers), built once and cached for the life of this Device.
+    // the embedded headers), built once and kept for the life of this Device; taken from
+    // the program binary cache when it holds an intact entry for this device and source.
     cl::Program &program(const std::string &cl_file);
+    ProgramOrigin program_origin(const std::string &cl_file) const;
+
+    // Generators call this once the program's kernels have completed a run: the program's
+    // binary then goes into the binary cache if it grew since it was stored (after the
+    // run, so that it holds the work-group functions PoCL compiles at the first enqueue).
+    void kernels_ran(const std::string &cl_file);
 
 private:
     DeviceInfo info_;
     cl::Device device_;
     cl::Context context_;
     cl::CommandQueue queue_;
-    std::list<std::pair<std::string, cl::Program>> programs_; // stable references
+    struct ProgramEntry {
+        std::string file;
+        cl::Program program;
+        ProgramCache cache;
+        ProgramOrigin origin;
+        size_t binary_size; // of the binary last stored or loaded (0: none)
+    };
+    std::list<ProgramEntry> programs_; // stable references
 };
 
 // The embedded source of `name` with its local includes inlined (each header once).

@@ -16,6 +16,10 @@ namespace {
 void require(bool ok, const std::string &message) {
     if (!ok) throw std::invalid_argument(message);
 }
+// Literal messages: no std::string built on the hot path (radiance checks every query).
+void require(bool ok, const char *message) {
+    if (!ok) throw std::invalid_argument(message);
+}
 
 slut_airlight_geometry setup(const AirlightQuery &q) {
     check_airlight_query(q);
@@ -84,6 +88,7 @@ AirlightTable::AirlightTable(Table table) : table_(std::move(table)) {
     require(table_.axes[0].map.min == 0.0, "airlight table u axis must start at 0");
     require(std::fabs(table_.axes[1].map.max - 1.5707963267948966) < 1e-12,
             "airlight table w axis must end at pi/2");
+    cache_ = make_sampler_cache(table_);
     u_max_ = table_.axes[0].map.max;
     w_min_ = table_.axes[1].map.min;
 }
@@ -94,7 +99,7 @@ double AirlightTable::scaled_tail(double u, double w, double a) const {
     case SLUT_GS_SMALL_W: return slut_gs_small_w(w, a);
     default: {
         const double params[2] = {u, w};
-        return sample(table_, params, 0);
+        return sample(table_, cache_, params, 0);
     }
     }
 }

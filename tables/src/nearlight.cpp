@@ -16,6 +16,10 @@ namespace {
 void require(bool ok, const std::string &message) {
     if (!ok) throw std::invalid_argument(message);
 }
+// Literal messages: no std::string built on the hot path (radiance checks every query).
+void require(bool ok, const char *message) {
+    if (!ok) throw std::invalid_argument(message);
+}
 
 bool unit_vector(const double *v) {
     const double n2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
@@ -116,6 +120,7 @@ NearLightTable::NearLightTable(Table table) : table_(std::move(table)) {
                 table_.channels[0].encoding == Encoding::Log,
             std::string("near-light table channel 0 must be ") + channel + " (log encoded)");
     table_.check_consistent();
+    cache_ = make_sampler_cache(table_);
 }
 
 bool NearLightTable::covers(double T, double g, double r, double S) const {
@@ -128,7 +133,7 @@ bool NearLightTable::covers(double T, double g, double r, double S) const {
 double NearLightTable::E(double T, double g, double r, double S) const {
     if (!covers(T, g, r, S)) return T > 0.0 ? slut_nl_E(T, g, r, S) : 1.0;
     double unit[4];
-    for (size_t a = 0; a < 3; ++a) unit[a] = slut_unit_from_param(&table_.axes[a].map, a == 0 ? T : a == 1 ? g : r);
+    for (size_t a = 0; a < 3; ++a) unit[a] = slut_unit_from_warped(&table_.axes[a].map, a == 0 ? T : a == 1 ? g : r, cache_.g0[a], cache_.g1[a]);
     if (thick_only()) return std::exp(sample_encoded_at_unit(table_, unit, 0));
     unit[3] = slut_nl_unit_from_S(&table_.axes[3].map, T, g, S);
     return std::exp(sample_encoded_at_unit(table_, unit, 0)) * slut_nl_E_base(T, r, S);

@@ -8,9 +8,21 @@ double decode(Encoding encoding, double stored) {
     return encoding == Encoding::Log ? std::exp(stored) : stored;
 }
 
+SamplerCache make_sampler_cache(const Table &table) {
+    SamplerCache c;
+    for (size_t a = 0; a < table.axes.size() && a < 8; ++a)
+        slut_axis_warped_ends(&table.axes[a].map, &c.g0[a], &c.g1[a]);
+    return c;
+}
+
 double sample_encoded(const Table &table, const double *params, size_t channel) {
+    return sample_encoded(table, make_sampler_cache(table), params, channel);
+}
+
+double sample_encoded(const Table &table, const SamplerCache &cache, const double *params, size_t channel) {
     double unit[8];
-    for (size_t a = 0; a < table.axes.size() && a < 8; ++a) unit[a] = slut_unit_from_param(&table.axes[a].map, params[a]);
+    for (size_t a = 0; a < table.axes.size() && a < 8; ++a)
+        unit[a] = slut_unit_from_warped(&table.axes[a].map, params[a], cache.g0[a], cache.g1[a]);
     return sample_encoded_at_unit(table, unit, channel);
 }
 
@@ -46,6 +58,10 @@ double sample_encoded_at_unit(const Table &table, const double *unit, size_t cha
 
 double sample(const Table &table, const double *params, size_t channel) {
     return decode(table.channels[channel].encoding, sample_encoded(table, params, channel));
+}
+
+double sample(const Table &table, const SamplerCache &cache, const double *params, size_t channel) {
+    return decode(table.channels[channel].encoding, sample_encoded(table, cache, params, channel));
 }
 
 } // namespace scatterlut

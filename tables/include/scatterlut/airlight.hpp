@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "scatterlut/sampler.hpp"
 #include "scatterlut/table.hpp"
 
 namespace scatterlut {
@@ -62,6 +63,7 @@ public:
 
 private:
     Table table_;
+    SamplerCache cache_; // of table_
     double u_max_ = 0;
     double w_min_ = 0;
 };

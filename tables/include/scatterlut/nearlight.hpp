@@ -5,6 +5,7 @@
 // with H in closed form and E ∈ (0, 1] the tabulated ĥ⁻²-weighted mean attenuation.
 #pragma once
 
+#include "scatterlut/sampler.hpp"
 #include "scatterlut/table.hpp"
 
 namespace scatterlut {
@@ -66,6 +67,7 @@ public:
 
 private:
     Table table_;
+    SamplerCache cache_; // of table_
 };
 
 } // namespace scatterlut

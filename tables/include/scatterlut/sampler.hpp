@@ -1,5 +1,6 @@
 // scatterlut runtime — multilinear sampling of a table with the generator's own axis
-// maps (kernels/slut_axes.h). Allocation-free and thread-safe (const, no caches).
+// maps (kernels/slut_axes.h). Allocation-free and thread-safe (const; a SamplerCache is
+// plain data computed once per table).
 #pragma once
 
 #include <cstddef>
@@ -16,6 +17,17 @@ double sample(const Table &table, const double *params, size_t channel = 0);
 
 // As sample(), but returns the interpolated encoded value (ln q for Log channels).
 double sample_encoded(const Table &table, const double *params, size_t channel = 0);
+
+// The per-axis constants of the unit maps (the warped domain ends), computed once per
+// table so that a lookup evaluates one warp per axis instead of three.
+struct SamplerCache {
+    double g0[8] = {}, g1[8] = {};
+};
+SamplerCache make_sampler_cache(const Table &table);
+
+// As above with the table's cache (bit-identical results).
+double sample(const Table &table, const SamplerCache &cache, const double *params, size_t channel = 0);
+double sample_encoded(const Table &table, const SamplerCache &cache, const double *params, size_t channel = 0);
 
 // The interpolated encoded value at given unit coordinates (one per axis, each clamped to
 // [0, 1]): for axes whose unit coordinate is not a one-parameter warp (the near-light slab

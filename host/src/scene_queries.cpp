@@ -1,0 +1,109 @@
+#include "scene_queries.hpp"
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <utility>
+
+namespace scatterlut {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDegree = kPi / 180.0;
+
+using Rng = std::mt19937_64;
+
+double uniform(Rng &rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+
+// Log-uniform over [lo, hi] for lo > 0; uniform when the range starts at 0.
+double spread(Rng &rng, const Range &r) {
+    if (!(r.min > 0.0) || !(r.max > r.min)) return uniform(rng, r.min, r.max);
+    return std::exp(uniform(rng, std::log(r.min), std::log(r.max)));
+}
+
+// (medium, light) pairs with a point light lighting the medium, filtered by `want`.
+template <class Want>
+std::vector<std::pair<const SceneMedium *, const SceneLight *>> pairs(const Scene &scene, Want want) {
+    std::vector<std::pair<const SceneMedium *, const SceneLight *>> out;
+    for (const SceneMedium &m : scene.media) {
+        if (!want(m) || !(m.sigma_s_per_m > 0.0)) continue;
+        for (const SceneLight &l : scene.lights)
+            if (l.type == LightType::Point && Scene::lights_medium(l, m)) out.emplace_back(&m, &l);
+    }
+    return out;
+}
+
+} // namespace
+
+std::vector<AirlightQuery> sample_airlight_queries(const Scene &scene, size_t count, uint64_t seed) {
+    const auto lit = pairs(scene, [](const SceneMedium &m) { return m.viewer_inside; });
+    std::vector<AirlightQuery> out;
+    if (lit.empty()) return out;
+    Rng rng(seed);
+    out.reserve(count);
+    for (size_t k = 0; k < count; ++k) {
+        const auto &[m, l] = lit[k % lit.size()];
+        AirlightQuery q;
+        q.sigma_s_per_m = m->sigma_s_per_m;
+        q.sigma_a_per_m = m->sigma_a_per_m;
+        q.intensity_W_per_sr = l->intensity_W_per_sr;
+        q.distance_m = spread(rng, l->distance_m);
+        q.gamma_rad = std::acos(uniform(rng, -1.0, 1.0)); // γ: view direction ↔ direction viewer→light
+        q.length_m = (k % 4 == 3) ? std::numeric_limits<double>::infinity()
+                                  : q.distance_m * std::exp(uniform(rng, std::log(1e-3), std::log(10.0)));
+        out.push_back(q);
+    }
+    return out;
+}
+
+std::vector<NearLightQuery> sample_near_light_queries(const Scene &scene, bool finite, size_t count, uint64_t seed) {
+    const auto lit = pairs(scene, [finite](const SceneMedium &m) {
+        return !m.viewer_inside && (finite ? m.has_thickness : m.thick);
+    });
+    std::vector<NearLightQuery> out;
+    if (lit.empty()) return out;
+    Rng rng(seed);
+    const double cos_view_max = std::cos(scene.view.max_view_angle_deg * kDegree);
+    const double cos_light_max = std::cos(scene.view.max_light_angle_deg * kDegree);
+    out.reserve(count);
+    for (size_t k = 0; k < count; ++k) {
+        const auto &[m, l] = lit[k % lit.size()];
+        NearLightQuery q;
+        q.sigma_s_per_m = m->sigma_s_per_m;
+        q.sigma_a_per_m = m->sigma_a_per_m;
+        q.intensity_W_per_sr = l->intensity_W_per_sr;
+        // Uniform in solid angle within the cones: cos θ uniform.
+        const double mu_e = uniform(rng, cos_view_max, 1.0);
+        const double mu_l = uniform(rng, std::max(0.0, cos_light_max), 1.0);
+        const double phi = uniform(rng, 0.0, 2.0 * kPi);
+        const double sin_e = std::sqrt(std::max(0.0, 1.0 - mu_e * mu_e));
+        const double sin_l = std::sqrt(std::max(0.0, 1.0 - mu_l * mu_l));
+        const double eye[3] = {sin_e, 0.0, mu_e};
+        const double distance = spread(rng, l->distance_m);
+        for (int i = 0; i < 3; ++i) {
+            q.normal[i] = i == 2 ? 1.0 : 0.0;
+            q.eye_dir[i] = eye[i];
+        }
+        q.light_rel_m[0] = distance * sin_l * std::cos(phi);
+        q.light_rel_m[1] = distance * sin_l * std::sin(phi);
+        q.light_rel_m[2] = distance * mu_l;
+        q.length_m = finite ? uniform(rng, m->thickness_m.min, m->thickness_m.max) / mu_e
+                            : std::numeric_limits<double>::infinity();
+        out.push_back(q);
+    }
+    return out;
+}
+
+std::string describe_airlight_queries() {
+    return "viewer-inside media x point lights: D log-uniform over the light's distance range, cos(gamma) uniform in "
+           "[-1, 1], s = inf for 1/4 of the queries, else log-uniform in [1e-3 D, 10 D]";
+}
+
+std::string describe_near_light_queries(bool finite) {
+    return std::string("media seen from outside x point lights: ") + (finite ? "slabs" : "thick media") +
+           "; eye and light directions uniform in solid angle within the scene's view and light cones, light "
+           "distance log-uniform over its range" +
+           (finite ? ", path inside s = thickness / mu_e with the thickness uniform over its range" : "");
+}
+
+} // namespace scatterlut

@@ -1,0 +1,233 @@
+// `scatterlut report` (host/src/report.cpp) run as the built executable on example scenes,
+// and its charts (host/src/svg_plot.cpp). The report's numbers are measurements, so the
+// checks are the relations a correct measurement must show — each rung meets the tolerance
+// it asked for, resolution buys accuracy, f16 costs half the bytes, the planned table holds
+// the scene's error, the thin-medium form is wrong for a thick medium — never a time.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "cli_runner.hpp"
+#include "svg_plot.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using Row = std::map<std::string, std::string>;
+
+const std::string kScenes = std::string(SLUT_SOURCE_DIR) + "/examples/scenes/";
+
+std::string read_file(const std::string &path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A CSV with a header line, no quoting (the report writes none).
+std::vector<Row> read_csv(const std::string &path) {
+    std::istringstream in(read_file(path));
+    std::string line;
+    std::vector<std::string> header;
+    std::vector<Row> rows;
+    auto split = [](const std::string &s) {
+        std::vector<std::string> out;
+        std::stringstream ss(s);
+        std::string cell;
+        while (std::getline(ss, cell, ',')) out.push_back(cell);
+        return out;
+    };
+    if (!std::getline(in, line)) return rows;
+    header = split(line);
+    while (std::getline(in, line)) {
+        const auto cells = split(line);
+        EXPECT_EQ(cells.size(), header.size()) << path << ": " << line;
+        Row r;
+        for (size_t i = 0; i < header.size() && i < cells.size(); ++i) r[header[i]] = cells[i];
+        rows.push_back(r);
+    }
+    return rows;
+}
+
+double num(const Row &r, const std::string &key) { return std::stod(r.at(key)); }
+
+void expect_svg(const std::string &path) {
+    const std::string s = read_file(path);
+    ASSERT_FALSE(s.empty()) << path;
+    EXPECT_EQ(s.rfind("<svg", 0), 0u) << path;
+    EXPECT_NE(s.find("</svg>\n"), std::string::npos) << path;
+    EXPECT_NE(s.find("planned"), std::string::npos) << path << ": the planner's choice must be marked";
+    EXPECT_EQ(s.find("nan"), std::string::npos) << path;
+}
+
+// One report run per example scene, shared by the tests below (each generates a dozen tables).
+std::string run_report(const std::string &scene) {
+    const std::string d = slut_test::temp_stem("report_" + scene);
+    fs::remove_all(d);
+    const auto r = slut_test::run_scatterlut("report --scene " + kScenes + scene + ".toml --out " + d +
+                                             " --rounds 1 --queries 800");
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    return d;
+}
+const std::string &candle_report() {
+    static const std::string dir = run_report("candle_wax");
+    return dir;
+}
+const std::string &fog_report() {
+    static const std::string dir = run_report("fog_street");
+    return dir;
+}
+
+void expect_rungs_meet_their_tolerance(const std::string &csv) {
+    const auto rows = read_csv(csv);
+    ASSERT_GE(rows.size(), 6u) << csv;
+    double tightest = 1, tightest_error = 1;
+    int planned = 0;
+    for (const Row &r : rows) {
+        const double tol = num(r, "tolerance"), err = num(r, "max_node_rel_error");
+        EXPECT_LE(err, 10 * tol + 1e-14) << csv << ": tolerance " << tol;
+        EXPECT_GT(num(r, "generation_ms_median"), 0.0);
+        planned += r.at("planned") == "1";
+        if (tol < tightest) {
+            tightest = tol;
+            tightest_error = err;
+        }
+    }
+    EXPECT_EQ(planned, 1) << csv;
+    EXPECT_LE(tightest_error, 1e-12) << csv;
+}
+
+} // namespace
+
+// Every rung of the tolerance ladder meets the tolerance it asked for (a factor 10 for the
+// rule's error estimate being an estimate, and 1e-14 for the reference's own rounding);
+// the tightest rung is at round-off.
+TEST(Report, ToleranceRungsMeetTheirTolerance) {
+    expect_rungs_meet_their_tolerance(candle_report() + "/near_light_E3_tolerance.csv");
+    expect_svg(candle_report() + "/near_light_E3_tolerance.svg");
+    expect_rungs_meet_their_tolerance(fog_report() + "/airlight_F_tolerance.csv");
+    expect_svg(fog_report() + "/airlight_F_tolerance.svg");
+}
+
+// The airlight report: the planned F table holds the fog's accepted error (0.005 in
+// fog_street.toml) over the scene's geometries, and exact and table are the two methods.
+TEST(Report, AirlightTableHoldsTheScenesError) {
+    const auto res = read_csv(fog_report() + "/airlight_F_resolution.csv");
+    bool planned = false;
+    for (const Row &r : res)
+        if (r.at("planned") == "1") {
+            planned = true;
+            EXPECT_LE(num(r, "radiance_max_rel"), 0.005);
+        }
+    EXPECT_TRUE(planned);
+    std::map<std::string, Row> m;
+    for (const Row &r : read_csv(fog_report() + "/airlight_F_methods.csv")) m[r.at("method")] = r;
+    ASSERT_EQ(m.size(), 2u);
+    EXPECT_LE(num(m.at("table"), "max_rel"), 0.005);
+    expect_svg(fog_report() + "/airlight_F_resolution.svg");
+    expect_svg(fog_report() + "/airlight_F_methods.svg");
+}
+
+// Resolution buys accuracy, f16 halves the bytes, and the planned table holds the scene's
+// accepted error (0.02 in candle_wax.toml) on radiance over the scene's own geometries.
+TEST(Report, ResolutionLadderBuysAccuracyAndThePlanHoldsTheScenesError) {
+    const auto rows = read_csv(candle_report() + "/near_light_E3_resolution.csv");
+    ASSERT_GE(rows.size(), 6u);
+    std::map<std::string, std::map<std::string, Row>> by_counts; // counts → storage → row
+    const Row *planned = nullptr, *coarsest = nullptr, *finest = nullptr;
+    for (const Row &r : rows) {
+        by_counts[r.at("counts")][r.at("storage")] = r;
+        if (r.at("planned") == "1") planned = &r;
+        if (r.at("storage") != "f32") continue;
+        if (!coarsest || num(r, "bytes") < num(*coarsest, "bytes")) coarsest = &r;
+        if (!finest || num(r, "bytes") > num(*finest, "bytes")) finest = &r;
+    }
+    ASSERT_NE(planned, nullptr);
+    EXPECT_LE(num(*planned, "radiance_max_rel"), 0.02);
+    EXPECT_GT(num(*planned, "queries"), 400.0);
+    ASSERT_NE(coarsest, finest);
+    EXPECT_LT(num(*finest, "radiance_max_rel"), num(*coarsest, "radiance_max_rel"));
+    for (const auto &[counts, st] : by_counts)
+        if (st.count("f16") && st.count("f32")) {
+            EXPECT_EQ(2 * num(st.at("f16"), "bytes"), num(st.at("f32"), "bytes")) << counts;
+            EXPECT_GT(num(st.at("f32"), "ns_per_lookup"), 0.0);
+        }
+    expect_svg(candle_report() + "/near_light_E3_resolution.svg");
+}
+
+// The methods on the same queries: the table holds the scene's error; the thin-medium
+// closed form tends to 0 as S → ∞ (DESIGN §1.3), so on a thick medium it is off by far more.
+TEST(Report, MethodsCompareTheTableWithTheClosedForms) {
+    const auto rows = read_csv(candle_report() + "/near_light_E3_methods.csv");
+    std::map<std::string, Row> m;
+    for (const Row &r : rows) m[r.at("method")] = r;
+    ASSERT_EQ(m.size(), 4u);
+    EXPECT_EQ(m.at("exact").at("max_rel"), "reference");
+    EXPECT_LE(num(m.at("table"), "max_rel"), 0.02);
+    EXPECT_GT(num(m.at("thin"), "max_rel"), 10 * num(m.at("table"), "max_rel"));
+    EXPECT_GT(num(m.at("distant"), "median_rel"), num(m.at("table"), "median_rel"));
+    for (const auto &[name, r] : m) EXPECT_GT(num(r, "ns_per_call"), 0.0) << name;
+    expect_svg(candle_report() + "/near_light_E3_methods.svg");
+    const std::string md = read_file(candle_report() + "/report.md");
+    EXPECT_NE(md.find("## near_light_E3"), std::string::npos);
+    EXPECT_NE(md.find("candle_wax.toml"), std::string::npos) << "the report names the command that produced it";
+}
+
+TEST(Report, SceneWithoutTablesSaysSo) {
+    const std::string d = slut_test::temp_stem("report_ocean");
+    fs::remove_all(d);
+    const auto r = slut_test::run_scatterlut("report --scene " + kScenes + "ocean_sun.toml --out " + d);
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    const std::string md = read_file(d + "/report.md");
+    EXPECT_NE(md.find("no table"), std::string::npos) << md;
+    size_t files = 0;
+    for (const auto &e : fs::directory_iterator(d)) files += e.is_regular_file();
+    EXPECT_EQ(files, 1u) << "only report.md";
+}
+
+TEST(Report, BadSceneExits2AndWritesNothing) {
+    const std::string bad = slut_test::temp_stem("report_bad") + ".toml";
+    std::ofstream(bad) << "[[medium]]\nname = \"fog\"\nsigma_s_per_m = -1\n";
+    const std::string d = slut_test::temp_stem("report_bad_out");
+    fs::remove_all(d);
+    const auto r = slut_test::run_scatterlut("report --scene " + bad + " --out " + d);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find(bad + ":3"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(d));
+}
+
+// ------------------------------------------------------------------ the charts
+TEST(SvgPlot, ParetoFrontKeepsTheUndominatedPoints) {
+    using scatterlut::PlotPoint;
+    const std::vector<PlotPoint> pts = {{1, 5}, {2, 3}, {3, 4}, {4, 1}, {5, 2}, {0.5, 9}};
+    const auto front = scatterlut::pareto_front(pts);
+    ASSERT_EQ(front.size(), 4u);
+    EXPECT_EQ(front[0].x, 0.5);
+    EXPECT_EQ(front[1].x, 1);
+    EXPECT_EQ(front[2].x, 2);
+    EXPECT_EQ(front[3].x, 4);
+}
+
+TEST(SvgPlot, LogAxesLeaveOutWhatTheyCannotShow) {
+    scatterlut::Plot p;
+    p.title = "t <&>";
+    p.log_x = p.log_y = true;
+    scatterlut::PlotSeries s;
+    s.label = "s";
+    s.points = {{1, 1e-3}, {10, 1e-5}, {-1, 1}, {100, 0}, {1000, NAN}};
+    p.series.push_back(s);
+    const std::string svg = scatterlut::render_svg(p);
+    EXPECT_NE(svg.find("t &lt;&amp;&gt;"), std::string::npos);
+    size_t circles = 0;
+    for (size_t at = svg.find("<circle"); at != std::string::npos; at = svg.find("<circle", at + 1)) ++circles;
+    EXPECT_EQ(circles, 2u) << "only the two positive, finite points";
+    EXPECT_NE(svg.find(">1e-5<"), std::string::npos) << "decade ticks";
+    scatterlut::Plot empty;
+    EXPECT_NE(scatterlut::render_svg(empty).find("no data"), std::string::npos);
+}
