@@ -209,7 +209,7 @@ void add_E_queries(const GpuTable &t, bool thick, std::mt19937_64 &rng, std::vec
             if (t.cpp->covers(T, g, r, S)) continue;
             // The edge value: the C++ table at the point clamped to its axes (inside it).
             const auto& ax = t.rounded.axes;
-            const auto clamp = [&](size_t a, double p) { return std::min(std::max(p, ax[a].map.min), ax[a].map.max); };
+            const auto clamp = [&](size_t a, double x) { return std::min(std::max(x, ax[a].map.min), ax[a].map.max); };
             q.reference = t.cpp->E(clamp(0, T), clamp(1, g), clamp(2, r), thick ? kInf : clamp(3, S));
             q.ln_E = std::log(q.reference);
             q.label = "E_clamped";
@@ -458,7 +458,8 @@ constexpr double kTolE = 1e-5, kTolPerLnE = 2e-7, kTolRadiance = 1e-5, kTolClose
                  kTolPerConditioning = 2e-7;
 
 // The hardware filter's extra error on one table (see the tolerances above): per filtered
-// axis the largest |Δ ln E| across one cell times (weight error + 2^-24·texels).
+// axis the largest |Δ ln E| between neighbouring texels (layer seams included) times
+// (weight error + 2^-24·texels).
 double hardware_filter_extra(const GpuTable &t, double weight_error) {
     const auto &ax = t.rounded.axes;
     const size_t n[3] = {static_cast<size_t>(ax[0].map.count), static_cast<size_t>(ax[1].map.count) * t.layers(),
@@ -469,11 +470,12 @@ double hardware_filter_extra(const GpuTable &t, double weight_error) {
         for (size_t j = 0; j < n[1]; ++j)
             for (size_t i = 0; i < n[0]; ++i) {
                 const size_t at = (k * n[1] + j) * n[0] + i, idx[3] = {i, j, k};
-                for (int a = 0; a < 3; ++a) {
-                    const bool last_g_of_layer = a == 1 && (j + 1) % static_cast<size_t>(ax[1].map.count) == 0;
-                    if (idx[a] + 1 < n[a] && !last_g_of_layer)
+                // Across a layer seam too: at the last g of a layer the position sits on a
+                // texel centre, and the filter's position error (below) reaches into the
+                // next layer's first row.
+                for (int a = 0; a < 3; ++a)
+                    if (idx[a] + 1 < n[a])
                         jump[a] = std::max(jump[a], double{std::fabs(t.texels[at + stride[a]] - t.texels[at])});
-                }
             }
     double extra = 0;
     for (int a = 0; a < 3; ++a) extra += jump[a] * (weight_error + std::ldexp(static_cast<double>(n[a]), -24));
