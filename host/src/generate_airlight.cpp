@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <chrono>
 #include <random>
 #include <thread>
@@ -310,6 +311,9 @@ Table generate_airlight_table(Device &device, const AirlightPlan &plan, const Pr
                               const std::function<void(double)> &progress) {
     Table t = make_airlight_table_layout(plan);
     t.provenance = provenance;
+    char tolerance[32];
+    std::snprintf(tolerance, sizeof tolerance, "%.3g", plan.integration_tolerance);
+    t.extra["integration.tolerance"] = tolerance; // requested; integration_max_rel is what it reached
     t.values = integrate_airlight_ln_gs(device, t, plan.integration_tolerance);
     if (progress) progress(1.0);
 
