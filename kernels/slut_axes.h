@@ -52,7 +52,12 @@
 SLUT_FN double slut_warp_forward(int warp, double p, double p_min, double scale) {
     switch (warp) {
     case SLUT_WARP_LOG: return log(p);
-    case SLUT_WARP_LOG1P: return log1p((p - p_min) / scale);
+    case SLUT_WARP_LOG1P: {
+        /* log1p only where 1 + x would lose digits: above x = 1, ln(1 + x) ≥ ln 2 and the
+           rounding of 1 + x costs ≤ 1 ulp, at the price of a plain log. */
+        double x = (p - p_min) / scale;
+        return (x > 1.0) ? log(1.0 + x) : log1p(x);
+    }
     case SLUT_WARP_ASINH_COT: {
         /* asinh(cot p) = ln(cot p + csc p) = ln((1 + cos p)/sin p); the last form keeps
            full relative precision as p → 0 and is exact 0 at p = π/2. */
@@ -153,6 +158,13 @@ SLUT_FN void slut_axis_warped_ends(const slut_axis *a, double *g0, double *g1) {
 SLUT_FN double slut_unit_from_warped(const slut_axis *a, double p, double g0, double g1) {
     return slut_unit_from_warped_ends(a->warp, p, a->min, a->max, a->scale, g0, g1);
 }
+
+/* The ASINH_COT warp from cot p instead of p: g = −asinh(cot p) = −ln(cot p + √(1 + cot² p)),
+   cot p ≥ 0 (no cancellation in the sum; the log's absolute error ~1e-16 is all the unit
+   coordinate sees). A caller that holds cot p (the airlight radiance has u·cot w and u)
+   pays a log and a sqrt instead of the cos, sin and log of slut_warp_forward (libm's
+   asinh costs about as much as those three here). cot p ≤ 1e150 (p ≥ 1e-150). */
+SLUT_FN double slut_warp_asinh_cot_from_cot(double cot_p) { return -log(cot_p + sqrt(1.0 + cot_p * cot_p)); }
 
 /* Parameter → unit coordinate x ∈ [0, 1] (the parameter clamped to the axis). */
 SLUT_FN double slut_unit_from_param(const slut_axis *a, double p) {

@@ -339,21 +339,26 @@ SLUT_FN double slut_nl_N(double T, double g, double r, double S) {
  * triangle light–entry point–P(S), S/T = sin(qθ)/sin((1 − q)θ) = ρ·sinc(qθ)/sinc((1 − q)θ). */
 
 /* SLUT_SHADER_BEGIN (the slab coordinate: also the GLSL/HLSL snippets') */
+/* σ/(T·T H∞) = I_in/I_out: the factor of σ that depends on S (sg = √(1 − g²)). */
+SLUT_FN double slut_nl_depth_odds_over_TH(double g, double sg, double S_over_T) {
+    double d = S_over_T + g;
+    double inside = slut_nl_inv_square_integral(S_over_T, 1.0, g, sg);
+    double outside = slut_nl_inv_square_integral(SLUT_HUGE_VAL, d * d + sg * sg, d, sg);
+    return inside / outside;
+}
 /* σ(T, g, S) of the derivation above: S > 0 finite, T > 0, g ∈ [−1 + ε, 1]. Robust at g = 1
  * (no division by sin θ: I_in/I_out and T·H∞ come from slut_nl_inv_square_integral). */
 SLUT_FN double slut_nl_depth_odds(double T, double g, double S) {
-    double sg = slut_nl_sin_from_cos(g);
-    double tau = S / T, d = tau + g;
-    double inside = slut_nl_inv_square_integral(tau, 1.0, g, sg);
-    double outside = slut_nl_inv_square_integral(SLUT_HUGE_VAL, d * d + sg * sg, d, sg);
-    return T * slut_nl_H_scaled(g, SLUT_HUGE_VAL) * (inside / outside);
+    return T * slut_nl_H_scaled(g, SLUT_HUGE_VAL) * slut_nl_depth_odds_over_TH(g, slut_nl_sin_from_cos(g), S / T);
 }
 
 /* S → unit coordinate x on a slab axis [S_min, S_max] at (T, g):
- *   x = ln(σ(S)/σ(S_min)) / ln(σ(S_max)/σ(S_min));  not clamped. */
+ *   x = ln(σ(S)/σ(S_min)) / ln(σ(S_max)/σ(S_min));  not clamped.
+ * The factor T·T H∞ of σ cancels in both ratios: only I_in/I_out is evaluated. */
 SLUT_FN double slut_nl_unit_from_S_between(double T, double g, double S, double S_min, double S_max) {
-    double lo = log(slut_nl_depth_odds(T, g, S_min)), hi = log(slut_nl_depth_odds(T, g, S_max));
-    return (log(slut_nl_depth_odds(T, g, S)) - lo) / (hi - lo);
+    double sg = slut_nl_sin_from_cos(g);
+    double lo = slut_nl_depth_odds_over_TH(g, sg, S_min / T), hi = slut_nl_depth_odds_over_TH(g, sg, S_max / T);
+    return log(slut_nl_depth_odds_over_TH(g, sg, S / T) / lo) / log(hi / lo);
 }
 /* SLUT_SHADER_END */
 

@@ -93,18 +93,29 @@ AirlightTable::AirlightTable(Table table) : table_(std::move(table)) {
     w_min_ = table_.axes[1].map.min;
 }
 
+// The table regime from (u, w, a = u·cot w): for u > 0 the w axis's ASINH_COT warp is
+// −asinh(a/u), which skips the cos, sin and log of the warp in w (u = 0 has no cot w in a).
 double AirlightTable::scaled_tail(double u, double w, double a) const {
     switch (slut_gs_regime(u, w, u_max_, w_min_)) {
     case SLUT_GS_LARGE_U: return slut_gs_large_u(u, w);
     case SLUT_GS_SMALL_W: return slut_gs_small_w(w, a);
     default: {
-        const double params[2] = {u, w};
-        return sample(table_, cache_, params, 0);
+        const slut_axis &axis_u = table_.axes[0].map, &axis_w = table_.axes[1].map;
+        const double unit[2] = {
+            slut_unit_from_warped(&axis_u, u, cache_.g0[0], cache_.g1[0]),
+            u > 0.0 ? (slut_warp_asinh_cot_from_cot(a / u) - cache_.g0[1]) / (cache_.g1[1] - cache_.g0[1])
+                    : slut_unit_from_warped(&axis_w, w, cache_.g0[1], cache_.g1[1])};
+        return std::exp(sample_encoded_at_unit(table_, unit, 0));
     }
     }
 }
 
+// a = u·cot w is needed only below w_min (slut_gs_small_w): computed there alone.
 double AirlightTable::scaled_tail(double u, double w) const {
+    if (slut_gs_regime(u, w, u_max_, w_min_) == SLUT_GS_TABLE) {
+        const double params[2] = {u, w};
+        return sample(table_, cache_, params, 0);
+    }
     return scaled_tail(u, w, u * std::cos(w) / std::sin(w));
 }
 

@@ -26,34 +26,37 @@ double sample_encoded(const Table &table, const SamplerCache &cache, const doubl
     return sample_encoded_at_unit(table, unit, channel);
 }
 
+// Multilinear interpolation as successive linear ones: gather the 2^n corner values of the
+// cell (corner bit a set = upper node on axis a), then halve the set once per axis, highest
+// axis first: 2^n − 1 lerps instead of 2^n products of n weights. A lerp with fraction 0
+// (1) returns its lower (upper) value exactly, so a zero-weight corner never enters the
+// sum (as a product of weights would guarantee).
 double sample_encoded_at_unit(const Table &table, const double *unit, size_t channel) {
-    const size_t n_axes = table.axes.size();
-    const size_t n_channels = table.channels.size();
-    // Per axis: lower node and fraction. At most 8 axes (the file format's bound).
-    int lower[8];
+    const size_t n_axes = table.axes.size() < 8 ? table.axes.size() : 8; // the file format's bound
     double frac[8];
-    size_t stride[8];
-    size_t s = n_channels;
-    for (size_t a = 0; a < n_axes && a < 8; ++a) {
+    size_t offset[256];
+    double v[256];
+    size_t base = channel, stride = table.channels.size();
+    offset[0] = 0;
+    for (size_t a = 0; a < n_axes; ++a) {
         const slut_axis &map = table.axes[a].map;
-        slut_cell_from_unit(unit[a], map.count, &lower[a], &frac[a]);
-        stride[a] = s;
-        s *= static_cast<size_t>(map.count);
+        int lower;
+        slut_cell_from_unit(unit[a], map.count, &lower, &frac[a]);
+        base += static_cast<size_t>(lower) * stride;
+        const size_t half = size_t{1} << a;
+        for (size_t c = 0; c < half; ++c) offset[half + c] = offset[c] + stride;
+        stride *= static_cast<size_t>(map.count);
     }
-    // Sum over the 2^n corners of the cell.
-    double value = 0.0;
     const size_t corners = size_t{1} << n_axes;
-    for (size_t corner = 0; corner < corners; ++corner) {
-        double weight = 1.0;
-        size_t index = channel;
-        for (size_t a = 0; a < n_axes; ++a) {
-            const bool upper = (corner >> a) & 1u;
-            weight *= upper ? frac[a] : 1.0 - frac[a];
-            index += (static_cast<size_t>(lower[a]) + (upper ? 1u : 0u)) * stride[a];
-        }
-        if (weight != 0.0) value += weight * table.values[index];
+    const double *values = table.values.data() + base;
+    for (size_t c = 0; c < corners; ++c) v[c] = values[offset[c]];
+    for (size_t a = n_axes; a-- > 0;) {
+        const size_t half = size_t{1} << a;
+        const double f = frac[a];
+        for (size_t c = 0; c < half; ++c)
+            v[c] = f == 0.0 ? v[c] : f == 1.0 ? v[c + half] : v[c] + f * (v[c + half] - v[c]);
     }
-    return value;
+    return v[0];
 }
 
 double sample(const Table &table, const double *params, size_t channel) {
