@@ -184,9 +184,16 @@ void BM_NearLightGeneration(benchmark::State &state) {
     const auto &ax = layout.axes;
     const int n_S = finite ? ax[3].map.count : 1;
     const auto picks = sample_nodes<4>({ax[0].map.count, ax[1].map.count, ax[2].map.count, n_S}, 300, 11);
+    // The node's (T, g, r, S): S from the slab axis's q map at (T, g) (slut_nl_S_node), as the kernel.
     auto param = [&](const std::array<int, 4> &p, double out[4]) {
         for (size_t a = 0; a < 3; ++a) out[a] = slut_axis_node(&ax[a].map, p[a]);
-        out[3] = finite ? slut_axis_node(&ax[3].map, p[3]) : HUGE_VAL;
+        out[3] = finite ? slut_nl_S_node(&ax[3].map, out[0], out[1], p[3]) : HUGE_VAL;
+    };
+    // E at a node from the table's value: ln E (3-D) or ln(E/B) with B = slut_nl_E_base (4-D).
+    auto node_E = [&](const std::array<int, 4> &p, double value) {
+        double at[4];
+        param(p, at);
+        return std::exp(value) * (finite ? slut_nl_E_base(at[0], at[2], at[3]) : 1.0);
     };
     auto flat = [&](const std::array<int, 4> &p) {
         size_t node[4] = {static_cast<size_t>(p[0]), static_cast<size_t>(p[1]), static_cast<size_t>(p[2]),
@@ -222,7 +229,7 @@ void BM_NearLightGeneration(benchmark::State &state) {
             baseline_worst = 0;
             for (size_t k = 0; k < picks.size(); ++k) {
                 baseline_worst = std::max(baseline_worst, std::fabs(base[k] - ref[k]) / ref[k]);
-                device_worst = std::max(device_worst, std::fabs(std::exp(values[flat(picks[k])]) - ref[k]) / ref[k]);
+                device_worst = std::max(device_worst, std::fabs(node_E(picks[k], values[flat(picks[k])]) - ref[k]) / ref[k]);
             }
             state.ResumeTiming();
         }

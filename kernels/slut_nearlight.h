@@ -105,6 +105,7 @@ SLUT_FN double slut_nl_H(double T, double g, double S) {
 /* ------------------------------------------------------------------ E and N by quadrature */
 
 #define SLUT_NL_MAX_LANES 16      /* r values sharing one (T, g, S) panel mesh            */
+#define SLUT_NL_MAX_SWEEP 64      /* S values sharing one march (slut_nl_E_sweep)         */
 #define SLUT_NL_MAX_PANELS 4096   /* safety cap: in-domain calls use ≤ 40 panels, absurd
                                      inputs (r = 1e-300, T = 700) ~300                     */
 #define SLUT_NL_EFOLDS 12.0       /* max e-folds of the integrand's exponent per panel    */
@@ -179,14 +180,22 @@ SLUT_FN double slut_nl_panel_length(double tau, double dl, double eta, double r_
     return fmin(h, (2.0 * L / B) / (1.0 + sqrt(1.0 + (8.0 * L / B) * (k_rate / B))));
 }
 
-/* E(T, g, r_j, S) for up to SLUT_NL_MAX_LANES values r_j sharing one panel mesh; returns the
- * number of quadrature nodes (each node: one sqrt and divide shared by the lanes, then one
- * divide and one exp per lane). E_out[j] ∈ [0, 1]; N = E·H.
+/* E(T, g, r_j, S_i) for up to SLUT_NL_MAX_LANES values r_j sharing one panel mesh and up to
+ * SLUT_NL_MAX_SWEEP slab depths S_0 ≤ S_1 ≤ … (ascending; +∞ allowed last) sharing one march
+ * (the cumulative sweep); E_out[i·lanes + j] = E(T, g, r_j, S_i) ∈ [0, 1]. Returns the number
+ * of quadrature nodes (each node: one sqrt and divide shared by the lanes, then one divide
+ * and one exp per lane). N = E·H.
  *
  * Derivation. E = N/H = Σ_n [W_n/(η_n² T·H)] e^{−Tφ_j(τ_n)} with the panels in τ units
  * (slut_nl_panel_length) and T·H = slut_nl_H_scaled: the weights in brackets form a
  * probability measure, so E is computed directly, never as a ratio of two under/overflowed
- * numbers. The march starts at τ = 0 and runs to S/T (or ∞).
+ * numbers. The march starts at τ = 0 and runs to the last S/T (or ∞); a panel that would
+ * cross a node S_i/T ends there, so the partial sum at S_i is the whole panel rule on
+ * [0, S_i/T] (the same rules as a march to S_i alone, with the earlier nodes' breaks). The
+ * weights are normalised by T·H(S_i) of the next node i, so the sum there is E_i itself;
+ * past it the sums are rescaled by H(S_i)/H(S_{i+1}) ≤ 1 (one S value: exactly the
+ * single-depth march). Per node the cost is a break in the mesh and one multiply per lane,
+ * instead of a march of its own.
  * Near the peak (g < 0, τ ≥ ½|g|) it carries δ = τ − τ* exactly and derives τ from it,
  * elsewhere it carries τ: the layer needs τ (and q) to full relative precision, the peak
  * needs δ to precision relative to its width √(1−g²).
@@ -194,38 +203,55 @@ SLUT_FN double slut_nl_panel_length(double tau, double dl, double eta, double r_
  * Stopping (at each panel start τ). The attenuation a(τ') = e^{−T(τ' + η(τ') q(τ'))} never
  * increases: q is increasing, and with q0 = q(τ) the exponent τ' + η(τ') q0 has slope
  * 1 + q0 η' ≥ 1 − q0 ≥ 0 (η is 1-Lipschitz). So for τ' ≥ τ, a(τ') ≤ a(τ) e^{−T(1−q0)(τ'−τ)}
- * and the remainder of lane j is at most
+ * and the remainder of lane j up to the last node is at most
  *   R_j = a_j(τ) · min(∫_τ^{S/T} η^{−2}, 1/(T (1 − q0) η_min²)),  η_min = min of η on [τ, S/T]
  * (a bound, not an estimate); the march stops once R_j ≤ SLUT_NL_TAIL_EPS × (sum so far)
- * for every lane. A peak or layer still ahead keeps a_j(τ)·∫η^{−2} large unless the
- * attenuation already makes it negligible, so nothing that matters can be skipped.
+ * for every lane. The remainder up to an earlier node S_i is smaller still (a sub-interval,
+ * the same sum so far), so the nodes not reached take the sum at the stop. A peak or layer
+ * still ahead keeps a_j(τ)·∫η^{−2} large unless the attenuation already makes it
+ * negligible, so nothing that matters can be skipped.
  *
  * Special cases: S = 0: E = e^{−T} for r = 0 (the light path is the whole ĥ) and 1 for r > 0;
  * T = 0: E = 1; g = −1 with S ≥ T (the ray runs through the light; N and H diverge): the
- * weight concentrates at t = T where ĥ = 0, so E = e^{−T}.
+ * weight concentrates at t = T where ĥ = 0, so E = e^{−T}. In a sweep the first are a
+ * prefix of the nodes and the last a suffix; the march covers the nodes between.
  * Citation: DESIGN.md §1.2; panel rules as in POCL-NOTES.md ("near-light integral"). */
-SLUT_FN int slut_nl_E_lanes(double T, double g, double S, const double *r, int lanes, double *E_out,
-                            double refine) {
+SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const double *r, int lanes,
+                            double *E_out, double refine) {
     double rr[SLUT_NL_MAX_LANES], sum[SLUT_NL_MAX_LANES];
-    int j;
+    int i, j;
     SLUT_ASSERT(lanes >= 1 && lanes <= SLUT_NL_MAX_LANES);
+    SLUT_ASSERT(n_S >= 1 && n_S <= SLUT_NL_MAX_SWEEP);
     if (lanes > SLUT_NL_MAX_LANES) lanes = SLUT_NL_MAX_LANES;
-    g = slut_nl_checked_g(T, g, 0.0, S);
+    if (n_S > SLUT_NL_MAX_SWEEP) n_S = SLUT_NL_MAX_SWEEP;
+    g = slut_nl_checked_g(T, g, 0.0, S[n_S - 1]);
     double sg = slut_nl_sin_from_cos(g);
-    double tau_end = (S > 1e300 || !(T > 0.0)) ? SLUT_HUGE_VAL : S / T;
-    if (!(tau_end > 0.0) || !(T > 0.0) || (sg == 0.0 && g < 0.0 && S >= T)) {
-        for (j = 0; j < lanes; ++j) {
-            SLUT_ASSERT(r[j] >= 0.0);
-            if (!(T > 0.0)) E_out[j] = 1.0;
-            else if (!(tau_end > 0.0)) E_out[j] = (r[j] > 0.0) ? 1.0 : exp(-T); /* S → 0 (S/T may underflow) */
-            else E_out[j] = exp(-T);
+    /* The nodes the march covers: first..stop−1 (ascending S: the special cases are the ends). */
+    int first = 0, stop = n_S;
+    for (i = 0; i < n_S; ++i) {
+        SLUT_ASSERT(i == 0 || S[i] >= S[i - 1]);
+        double tau_i = (S[i] > 1e300 || !(T > 0.0)) ? SLUT_HUGE_VAL : S[i] / T;
+        int through_light = (sg == 0.0 && g < 0.0 && S[i] >= T);
+        if (!(tau_i > 0.0) || !(T > 0.0) || through_light) {
+            for (j = 0; j < lanes; ++j) {
+                SLUT_ASSERT(r[j] >= 0.0);
+                double *E = &E_out[i * lanes + j];
+                if (!(T > 0.0)) *E = 1.0;
+                else if (!(tau_i > 0.0)) *E = (r[j] > 0.0) ? 1.0 : exp(-T); /* S → 0 (S/T may underflow) */
+                else *E = exp(-T);
+            }
+            if (!(tau_i > 0.0) && first == i) first = i + 1;
+            else if (stop == n_S) stop = i;
         }
-        return 0;
     }
+    if (first >= stop) return 0;
+    double tau_end = (S[stop - 1] > 1e300) ? SLUT_HUGE_VAL : S[stop - 1] / T;
     int finite_S = !(tau_end > 1e300);
-    /* Weights are normalised by T·H: they sum to 1 over [0, S/T], so the sums are E itself
-     * and cannot underflow for tiny S (where T·H ~ S/T). */
-    double inv_H = 1.0 / slut_nl_H_scaled(g, finite_S ? tau_end : SLUT_HUGE_VAL);
+    /* Weights are normalised by T·H of the next node: they sum to 1 over [0, S_next/T], so
+     * the sum is E itself there and cannot underflow for tiny S (where T·H ~ S/T). */
+#define SLUT_NL_NODE_TAU(i) (((i) == stop - 1) ? tau_end : S[i] / T) /* S_i/T (the last: exact tau_end) */
+    double H_next = slut_nl_H_scaled(g, (first == stop - 1) ? (finite_S ? tau_end : SLUT_HUGE_VAL) : S[first] / T);
+    double inv_H = 1.0 / H_next;
     double sg2 = sg * sg, half_peak = -0.5 * g;
     for (j = 0; j < lanes; ++j) {
         SLUT_ASSERT(r[j] >= 0.0);
@@ -234,12 +260,13 @@ SLUT_FN int slut_nl_E_lanes(double T, double g, double S, const double *r, int l
     }
     double tau = 0.0, dl = g;        /* march state: τ and δ = τ + g (one of them exact) */
     int carry_d = 0;                 /* 1 once the march carries δ (near the peak) */
-    double d_end = tau_end + g;      /* δ at τ = S/T (S finite) */
+    double d_end = tau_end + g;      /* δ at the last τ = S/T (S finite) */
+    int next = first;                /* the next node the march reaches */
     int nodes = 0;
     for (int panel = 0; panel < SLUT_NL_MAX_PANELS; ++panel) {
         if (!carry_d && g < 0.0 && tau >= half_peak) { carry_d = 1; }
         double eta2 = dl * dl + sg2, eta = sqrt(eta2);
-        /* Remainder bound, normalised like the sums. */
+        /* Remainder bound up to the last node, normalised like the sums. */
         if (panel > 0) {
             double d_min = (dl >= 0.0) ? dl : ((finite_S && d_end < 0.0) ? d_end : 0.0); /* η_min's δ */
             double eta_min2 = d_min * d_min + sg2;
@@ -264,10 +291,14 @@ SLUT_FN int slut_nl_E_lanes(double T, double g, double S, const double *r, int l
         double h = slut_nl_panel_length(tau, dl, eta, r_pole, k_rate, T, refine);
         SLUT_ASSERT(h > 0.0);
         if (!(h > 0.0)) break; /* cannot happen (every rule is > 0 for η > 0); never loop on it */
-        int last = 0;
-        if (finite_S) {
-            double remaining = carry_d ? d_end - dl : tau_end - tau;
-            if (h >= remaining) { h = remaining; last = 1; }
+        /* The panel ends at the next node if it would cross it (a node at S/T > 1e300 counts
+         * as ∞: never reached, it takes the sum at the stop). */
+        int at_node = 0;
+        double tau_node = SLUT_NL_NODE_TAU(next), d_node = 0.0;
+        if (!(tau_node > 1e300)) {
+            d_node = (next == stop - 1) ? d_end : tau_node + g;
+            double remaining = carry_d ? d_node - dl : tau_node - tau;
+            if (h >= remaining) { h = fmax(remaining, 0.0); at_node = 1; } /* ≥ 0: the nodes ascend */
         }
         double half_len = 0.5 * h; /* not "half": a type name in OpenCL C */
         for (int k = 0; k < 8; ++k) {
@@ -281,12 +312,40 @@ SLUT_FN int slut_nl_E_lanes(double T, double g, double S, const double *r, int l
                 ++nodes;
             }
         }
-        if (last) break;
+        if (at_node) {
+            /* Record every node at this depth (equal S values share it), then renormalise the
+             * sums from this node's T·H to the next one's. */
+            while (next < stop && SLUT_NL_NODE_TAU(next) <= tau_node) {
+                for (j = 0; j < lanes; ++j) E_out[next * lanes + j] = fmin(sum[j], 1.0);
+                ++next;
+            }
+            if (next >= stop) break;
+            double H_node = H_next;
+            H_next = slut_nl_H_scaled(g, SLUT_NL_NODE_TAU(next));
+            inv_H = 1.0 / H_next;
+            for (j = 0; j < lanes; ++j) sum[j] *= H_node / H_next;
+            if (carry_d) { dl = d_node; tau = dl - g; }
+            else { tau = tau_node; dl = tau + g; }
+            continue;
+        }
         if (carry_d) { dl += h; tau = dl - g; }
         else { tau += h; dl = tau + g; }
     }
-    for (j = 0; j < lanes; ++j) E_out[j] = fmin(sum[j], 1.0);
+    /* Nodes the march did not reach (stopped on the remainder bound) take the sum at the stop,
+     * renormalised from the next node's T·H to their own. */
+    for (i = next; i < stop; ++i) {
+        double scale = (i == next) ? 1.0 : H_next / slut_nl_H_scaled(g, SLUT_NL_NODE_TAU(i));
+        for (j = 0; j < lanes; ++j) E_out[i * lanes + j] = fmin(sum[j] * scale, 1.0);
+    }
+#undef SLUT_NL_NODE_TAU
     return nodes;
+}
+
+/* E(T, g, r_j, S) for up to SLUT_NL_MAX_LANES values r_j at one depth S sharing one panel
+ * mesh: slut_nl_E_sweep with a single node (the march to S alone). */
+SLUT_FN int slut_nl_E_lanes(double T, double g, double S, const double *r, int lanes, double *E_out,
+                            double refine) {
+    return slut_nl_E_sweep(T, g, &S, 1, r, lanes, E_out, refine);
 }
 
 /* E(T, g, r, S) = N/H ∈ (0, 1]: see slut_nl_E_lanes. Contract: 1e-10 relative; measured

@@ -423,6 +423,44 @@ TEST(NearLightMath, LanesShareOneMesh) {
 }
 
 // ---------------------------------------------------------------------------------------
+// Reference: the header itself, one depth at a time. slut_nl_E_sweep marches once for a
+// list of ascending depths (the kernel's cumulative S sweep, breaking the mesh at every
+// node); each node must match its own march to that S alone (slut_nl_E_lanes), including
+// the special-case ends of the list (S → 0 first; g = −1 with S ≥ T, and S = ∞, last).
+// Tolerance 1e-13: both sides are ≤ 2e-14 against Boost (NearLightMath tests above), and the
+// meshes differ only by the breaks.
+TEST(NearLightMath, SweepMatchesOneMarchPerDepth) {
+    double r[SLUT_NL_MAX_LANES];
+    for (int j = 0; j < SLUT_NL_MAX_LANES; ++j) r[j] = (j == 0) ? 0.0 : std::pow(10.0, -6.0 + 10.0 * (j - 1) / 14.0);
+    Worst w;
+    for (double T : {1e-3, 0.3, 5.0, 50.0, 100.0})
+        for (double g : {-1.0, -0.999999, -0.5, 0.0, 0.9, 1.0}) {
+            // Ascending depths: below and through the peak t* = −gT, equal neighbours, and the ends.
+            std::vector<double> S = {0.0, 1e-300, 1e-6, 1e-3, 0.1 * T, 0.5 * T, 0.5 * T, std::fabs(g) * T,
+                                     std::fabs(g) * T * (1 + 1e-9), T, 2.0 * T, 3.0 * T + 7.0, 1e300};
+            for (bool infinite_last : {false, true}) {
+                if (infinite_last) S.push_back(kInf);
+                std::sort(S.begin(), S.end());
+                const int n_S = static_cast<int>(S.size());
+                std::vector<double> E(static_cast<size_t>(n_S) * SLUT_NL_MAX_LANES, -1.0);
+                slut_nl_E_sweep(T, g, S.data(), n_S, r, SLUT_NL_MAX_LANES, E.data(), 1.0);
+                for (int i = 0; i < n_S; ++i) {
+                    double single[SLUT_NL_MAX_LANES];
+                    slut_nl_E_lanes(T, g, S[static_cast<size_t>(i)], r, SLUT_NL_MAX_LANES, single, 1.0);
+                    for (int j = 0; j < SLUT_NL_MAX_LANES; ++j) {
+                        const double swept = E[static_cast<size_t>(i * SLUT_NL_MAX_LANES + j)];
+                        const double e = (swept == single[j]) ? 0.0 : slut_test::rel_err(swept, single[j]);
+                        w.add(e, T, g, r[j], S[static_cast<size_t>(i)]);
+                        EXPECT_LE(e, 1e-13) << "T=" << T << " g=" << g << " r=" << r[j] << " S=" << S[static_cast<size_t>(i)]
+                                            << " node " << i << " of " << n_S;
+                    }
+                }
+            }
+        }
+    w.print("one sweep vs one march per depth");
+}
+
+// ---------------------------------------------------------------------------------------
 // Reference: limits stated in the header and DESIGN §1.2–§1.3. Never NaN, E ∈ [0, 1]
 // everywhere and E ∈ (0, 1] wherever e^{−T} is representable; H and N finite or +∞;
 // the closed forms finite at S = ∞, r = 0, S → 0, r = ∞. Exact values where known.

@@ -69,7 +69,6 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
                                              const std::function<void(double)> &progress, double tolerance) {
     const bool finite_thickness = layout.axes.size() == 4;
     const int n_T = layout.axes[0].map.count, n_g = layout.axes[1].map.count, n_r = layout.axes[2].map.count;
-    const int n_S = finite_thickness ? layout.axes[3].map.count : 1;
     const size_t n = layout.node_count();
     cl::Program &program = device.program("nearlight_E.cl");
     cl::Kernel kernel(program, "nearlight_ln_E");
@@ -83,12 +82,19 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
     set_axis_args(kernel, &arg, finite_thickness ? layout.axes[3].map : thick);
     kernel.setArg(arg++, slut_nl_refine_for_tolerance(tolerance));
     const size_t groups = static_cast<size_t>((n_r + SLUT_NL_MAX_LANES - 1) / SLUT_NL_MAX_LANES);
-    for (int iS = 0; iS < n_S; ++iS) { // one S layer at a time: progress on a terminal
-        device.queue().enqueueNDRangeKernel(kernel, cl::NDRange(0, 0, static_cast<size_t>(iS) * n_T),
-                                            cl::NDRange(groups, static_cast<size_t>(n_g), static_cast<size_t>(n_T)),
-                                            cl::NullRange);
+    // One work-item per (r group, g, T) sweeps every S node (slut_nl_E_sweep); launched in
+    // a few slices of g for progress on a terminal. One work-item per work-group: PoCL keeps
+    // the private arrays of every work-item of a group on one thread's stack (E alone is
+    // SLUT_NL_MAX_SWEEP × SLUT_NL_MAX_LANES doubles, 8 KiB: its automatic groups of ~2000
+    // overflowed it), and a work-item is a whole march, so the group overhead is negligible.
+    const int slices = std::min(n_g, 8), per_slice = (n_g + slices - 1) / slices;
+    for (int ig0 = 0; ig0 < n_g; ig0 += per_slice) {
+        const int count = std::min(per_slice, n_g - ig0);
+        device.queue().enqueueNDRangeKernel(kernel, cl::NDRange(0, static_cast<size_t>(ig0), 0),
+                                            cl::NDRange(groups, static_cast<size_t>(count), static_cast<size_t>(n_T)),
+                                            cl::NDRange(1, 1, 1));
         device.queue().finish();
-        if (progress) progress(static_cast<double>(iS + 1) / n_S);
+        if (progress) progress(static_cast<double>(ig0 + count) / n_g);
     }
     std::vector<double> values(n);
     device.queue().enqueueReadBuffer(out, CL_TRUE, 0, n * sizeof(double), values.data());
