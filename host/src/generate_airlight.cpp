@@ -310,10 +310,7 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
 Table generate_airlight_table(Device &device, const AirlightPlan &plan, const Provenance &provenance,
                               const std::function<void(double)> &progress) {
     Table t = make_airlight_table_layout(plan);
-    t.provenance = provenance;
-    char tolerance[32];
-    std::snprintf(tolerance, sizeof tolerance, "%.3g", plan.integration_tolerance);
-    t.extra["integration.tolerance"] = tolerance; // requested; integration_max_rel is what it reached
+    begin_generation(t, provenance, plan.integration_tolerance);
     t.values = integrate_airlight_ln_gs(device, t, plan.integration_tolerance);
     if (progress) progress(1.0);
 

@@ -105,10 +105,7 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
 Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const Provenance &provenance,
                                const std::function<void(double)> &progress) {
     Table t = make_nearlight_table_layout(plan);
-    t.provenance = provenance;
-    char tolerance[32];
-    std::snprintf(tolerance, sizeof tolerance, "%.3g", plan.integration_tolerance);
-    t.extra["integration.tolerance"] = tolerance; // requested; integration_max_rel is what it reached
+    begin_generation(t, provenance, plan.integration_tolerance);
     t.values = integrate_nearlight_ln_E(device, t, progress, plan.integration_tolerance);
 
     t.accuracy.integration_max_rel = measure_nearlight_integration(t, 400, 1);

@@ -2,6 +2,8 @@
 // an axis passed to a kernel as (min, max, scale, warp, count).
 #pragma once
 
+#include <cstdio>
+
 #include <CL/opencl.hpp>
 
 #include "scatterlut/table.hpp"
@@ -19,6 +21,16 @@ inline Axis make_axis(const char *name, const char *meaning, double min, double 
     a.map.warp = warp;
     a.map.count = count;
     return a;
+}
+
+// Starts a table for generation: provenance, and the integration tolerance it is generated
+// with (extra "integration.tolerance": requested; accuracy.integration_max_rel is what it
+// reached).
+inline void begin_generation(Table &t, const Provenance &provenance, double integration_tolerance) {
+    t.provenance = provenance;
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", integration_tolerance);
+    t.extra["integration.tolerance"] = text;
 }
 
 // Sets the five kernel arguments of one axis starting at *arg, advancing it.
