@@ -83,35 +83,10 @@ double large_u_series_onset(double target, double w_min) {
 
 int half(int n) { return std::max(kMinNodes, (n + 1) / 2); }
 
-std::vector<int> counts_of(const PlannedTable &t) {
-    if (t.kind == kKindAirlightF) return {t.airlight.n_u, t.airlight.n_w};
-    std::vector<int> c = {t.near_light.n_T, t.near_light.n_g, t.near_light.n_r};
-    if (t.near_light.finite_thickness) c.push_back(t.near_light.n_S);
-    return c;
-}
-
-void set_counts(PlannedTable &t, const std::vector<int> &c) {
-    if (t.kind == kKindAirlightF) {
-        t.airlight.n_u = c[0];
-        t.airlight.n_w = c[1];
-        return;
-    }
-    t.near_light.n_T = c[0];
-    t.near_light.n_g = c[1];
-    t.near_light.n_r = c[2];
-    if (t.near_light.finite_thickness) t.near_light.n_S = c[3];
-}
-
 size_t bytes_of(const std::vector<int> &c, Storage storage) {
     size_t n = storage_bytes(storage);
     for (int k : c) n *= static_cast<size_t>(k);
     return n;
-}
-
-std::string counts_text(const std::vector<int> &c) {
-    std::string s;
-    for (int k : c) s += (s.empty() ? "" : "x") + std::to_string(k);
-    return s;
 }
 
 // The next resolution from the measured error and the h² model per axis: with e_a the
@@ -274,6 +249,31 @@ void resolve_table(PlannedTable &t, const ScenePlan &plan, Device &device, const
 }
 
 } // namespace
+
+std::vector<int> counts_of(const PlannedTable &t) {
+    if (t.kind == kKindAirlightF) return {t.airlight.n_u, t.airlight.n_w};
+    std::vector<int> c = {t.near_light.n_T, t.near_light.n_g, t.near_light.n_r};
+    if (t.near_light.finite_thickness) c.push_back(t.near_light.n_S);
+    return c;
+}
+
+void set_counts(PlannedTable &t, const std::vector<int> &c) {
+    if (t.kind == kKindAirlightF) {
+        t.airlight.n_u = c[0];
+        t.airlight.n_w = c[1];
+        return;
+    }
+    t.near_light.n_T = c[0];
+    t.near_light.n_g = c[1];
+    t.near_light.n_r = c[2];
+    if (t.near_light.finite_thickness) t.near_light.n_S = c[3];
+}
+
+std::string counts_text(const std::vector<int> &c, const char *separator) {
+    std::string s;
+    for (int k : c) s += (s.empty() ? "" : separator) + std::to_string(k);
+    return s;
+}
 
 std::vector<double> axis_interpolation_estimate(const Table &table, double ln_floor) {
     const size_t n_axes = table.axes.size(), channels = table.channels.size();

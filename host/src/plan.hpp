@@ -66,6 +66,11 @@ struct AirlightOverrides {
     std::optional<int> n_u, n_w;
 };
 
+// A planned table's node counts, in its axis order (u, w / T, g, r[, S]), and "48x40x32".
+std::vector<int> counts_of(const PlannedTable &t);
+void set_counts(PlannedTable &t, const std::vector<int> &counts);
+std::string counts_text(const std::vector<int> &counts, const char *separator = "x");
+
 // Effects → tables with their domains and target errors; no device, nothing measured.
 ScenePlan derive_plan(const Scene &scene, Storage storage, const AirlightOverrides &overrides = {});
 

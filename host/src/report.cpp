@@ -53,11 +53,6 @@ std::string fmt(const char *format, double x) {
     return buf;
 }
 
-std::string counts_text(const std::vector<int> &c) {
-    std::string s;
-    for (int k : c) s += (s.empty() ? "" : "x") + std::to_string(k);
-    return s;
-}
 
 struct ErrorStats {
     double median = 0, p90 = 0, p99 = 0, max = 0;
@@ -100,25 +95,9 @@ volatile double g_sink = 0;
 // ---------------------------------------------------------------- what a planned table is
 bool is_airlight(const PlannedTable &t) { return t.kind == kKindAirlightF; }
 
-std::vector<int> counts_of(const PlannedTable &t) {
-    if (is_airlight(t)) return {t.airlight.n_u, t.airlight.n_w};
-    std::vector<int> c = {t.near_light.n_T, t.near_light.n_g, t.near_light.n_r};
-    if (t.near_light.finite_thickness) c.push_back(t.near_light.n_S);
-    return c;
-}
-
 PlannedTable with_counts(PlannedTable t, const std::vector<int> &c, Storage storage) {
-    if (is_airlight(t)) {
-        t.airlight.n_u = c[0];
-        t.airlight.n_w = c[1];
-        t.airlight.storage = storage;
-    } else {
-        t.near_light.n_T = c[0];
-        t.near_light.n_g = c[1];
-        t.near_light.n_r = c[2];
-        if (t.near_light.finite_thickness) t.near_light.n_S = c[3];
-        t.near_light.storage = storage;
-    }
+    set_counts(t, c);
+    t.airlight.storage = t.near_light.storage = storage;
     return t;
 }
 

@@ -77,11 +77,6 @@ std::string axis_domain(const Axis &a) {
     return buf;
 }
 
-std::string counts_text(const std::vector<int> &c) {
-    std::string s;
-    for (int k : c) s += (s.empty() ? "" : " x ") + std::to_string(k);
-    return s;
-}
 
 void print_text(const ScenePlan &plan) {
     const Scene &s = plan.scene;
@@ -91,7 +86,7 @@ void print_text(const ScenePlan &plan) {
     for (const PlannedTable &t : plan.tables) {
         const PlanTrial &c = *t.chosen_trial();
         total += c.bytes;
-        std::printf("\n%s: %s, %.1f KiB\n", t.kind.c_str(), counts_text(c.counts).c_str(),
+        std::printf("\n%s: %s, %.1f KiB\n", t.kind.c_str(), counts_text(c.counts, " x ").c_str(),
                     static_cast<double>(c.bytes) / 1024.0);
         for (const auto &r : t.requested_by)
             std::printf("  asked for by medium '%s' with light '%s': %s\n", r.medium.c_str(), r.light.c_str(),
@@ -104,7 +99,7 @@ void print_text(const ScenePlan &plan) {
         for (size_t i = 0; i < t.trials.size(); ++i) {
             const PlanTrial &tr = t.trials[i];
             std::printf("  %s trial %zu: %-20s max %.3g, p99 %.3g, integration %.2g, %.2f s\n",
-                        static_cast<int>(i) == t.chosen ? "*" : " ", i + 1, counts_text(tr.counts).c_str(),
+                        static_cast<int>(i) == t.chosen ? "*" : " ", i + 1, counts_text(tr.counts, " x ").c_str(),
                         tr.sampling_max_rel, tr.sampling_p99_rel, tr.integration_max_rel, tr.seconds);
         }
         std::printf("  predicted error (measured, max over %llu random points): %.3g\n",
