@@ -647,6 +647,7 @@ TEST(BinaryHostile, StructuralCorruption) {
 TEST(BinaryHostile, UnknownMajorVersionRefused) {
     Bytes b = encode_binary(make_table(1, Storage::F32));
     put_u32(&b[8], 2);
+    put_u32(&b[12], 0);
     expect_decode_error(b, "test.slut: format version 2.0 is newer than this reader (1.x); upgrade scatterlut");
     put_u32(&b[8], 0);
     expect_decode_error(b, "format version 0.0 is older");
@@ -872,7 +873,8 @@ TEST(ExrHostile, EditedAttributesAndVersions) {
     b = good;
     const size_t major_at = find_bytes(b, std::string("scatterlut.format_major\0int\0", 28)) + 28 + 4;
     put_u32(&b[major_at], 2);
-    expect_exr_error(b, "test.exr: format version 2.0 is newer than this reader (1.x); upgrade scatterlut");
+    expect_exr_error(b, "test.exr: format version 2." + std::to_string(kFormatMinor) +
+                            " is newer than this reader (1.x); upgrade scatterlut");
     b = good;
     const size_t count_at = find_bytes(b, std::string("scatterlut.axis.1.count\0int\0", 28)) + 28 + 4;
     put_u32(&b[count_at], 7);
@@ -954,7 +956,8 @@ TEST(Exr, NewerMinorWithUnknownAttributesIsRead) {
 
     put_u32(&b[find_bytes(b, minor_attr) + minor_attr.size() + 4], kFormatMinor);
     refresh_exr_header_checksum(b);
-    expect_exr_error(b, "unknown attribute 'scatterlut.zz_new' (format version 1.0 defines no such attribute)");
+    expect_exr_error(b, "unknown attribute 'scatterlut.zz_new' (format version 1." + std::to_string(kFormatMinor) +
+                            " defines no such attribute)");
     // And the helper is faithful: refreshing an unedited file changes nothing.
     Bytes same = good;
     refresh_exr_header_checksum(same);
@@ -1088,7 +1091,8 @@ std::vector<Corruption> corruptions() {
     out.push_back({"inf.slut", build(f), "payload value at node (0, 0), channel 'F' is not finite (-inf)"});
     b = good;
     put_u32(&b[8], 2);
-    out.push_back({"major.slut", b, "format version 2.0 is newer than this reader (1.x); upgrade scatterlut"});
+    out.push_back({"major.slut", b,
+                   "format version 2." + std::to_string(kFormatMinor) + " is newer than this reader (1.x); upgrade scatterlut"});
 #ifdef SCATTERLUT_HAS_OPENEXR
     const Bytes exr = encode_exr(make_table(2, Storage::F16));
     b = exr;

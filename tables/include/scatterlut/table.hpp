@@ -18,7 +18,7 @@ namespace scatterlut {
 // Format version written by this library. Readers refuse another major version and
 // read newer minor versions (ignoring fields they do not know).
 inline constexpr uint32_t kFormatMajor = 1;
-inline constexpr uint32_t kFormatMinor = 0;
+inline constexpr uint32_t kFormatMinor = 1;
 
 // Most axes a table may have (the sampler keeps per-axis state in fixed arrays of this
 // size; the file formats use the same bound).
