@@ -2,7 +2,8 @@
 // the executable: the default tables pass `validate` and a 1e-3 relative perturbation with a
 // consistent checksum fails it (exit 1); the same command twice writes byte-identical files
 // (what `make run` twice must give); a run interrupted by SIGINT or SIGKILL while it writes
-// leaves the previous files intact and nothing partial under a final name.
+// leaves the previous files intact and nothing partial under a final name (and after a
+// SIGINT, no temporary file either).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -142,9 +143,9 @@ TEST(GeneratedFiles, SameCommandTwiceIsByteIdentical) {
 // Interrupted while writing its first table (signal sent at the first file event in the
 // directory): every final name still holds the previous run's complete file (or, had the
 // rename already happened, a complete new one that loads); the only other entries allowed
-// are the writer's hidden temporary files, which a SIGKILL cannot clean up. The previous
-// files are the default tables; the interrupted run makes a smaller airlight table, so
-// the two differ.
+// are the writer's hidden temporary files, which a SIGKILL cannot clean up (the command's
+// SIGINT handler removes them). The previous files are the default tables; the interrupted
+// run makes a smaller airlight table, so the two differ.
 TEST(GeneratedFiles, InterruptedRunLeavesThePreviousFiles) {
     for (int sig : {SIGINT, SIGKILL}) {
         SCOPED_TRACE(sig == SIGINT ? "SIGINT" : "SIGKILL");
@@ -163,13 +164,18 @@ TEST(GeneratedFiles, InterruptedRunLeavesThePreviousFiles) {
             bool is_temp = false;
             for (const char *f : kFiles) is_temp = is_temp || name.rfind("." + std::string(f) + ".tmp-", 0) == 0;
             EXPECT_TRUE(is_temp) << "unexpected file " << name;
+            // SIGINT is handled: the command removes its temporary file before it dies.
+            EXPECT_FALSE(is_temp && sig == SIGINT) << "SIGINT left the temporary file " << name;
             temp_left = temp_left || is_temp;
         }
-        // Normally the signal lands before the first rename, leaving a partial temporary file;
-        // on a loaded machine the writer may get further (then a complete new file is fine).
+        // Normally the signal lands before the first rename (after a SIGKILL the partial
+        // temporary file is left); on a loaded machine the writer may get further (then a
+        // complete new file is fine).
+        const bool first_replaced = read_all(dir + "/" + kFiles[0]) != before.at(kFiles[0]);
         std::printf("  %s: %s\n", sig == SIGINT ? "SIGINT" : "SIGKILL",
-                    temp_left ? "cut during the write (temporary file left, final names untouched)"
-                              : "landed after the write");
+                    first_replaced ? "landed after the first write"
+                    : temp_left    ? "cut during the write (temporary file left, final names untouched)"
+                                   : "cut during the write (temporary file removed, final names untouched)");
         for (const char *f : kFiles) {
             const Bytes now = read_all(dir + "/" + f);
             if (now == before.at(f)) continue;

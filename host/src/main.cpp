@@ -1,6 +1,7 @@
 // scatterlut — the command line: a thin layer over scatterlut_core.
 // One options struct per subcommand: setup_<cmd> binds it, run_<cmd> does the work.
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -38,6 +39,21 @@ std::string shell_quote(const std::string &arg) {
     std::string out = "'";
     for (char c : arg) out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
     return out + "'";
+}
+
+// A SIGINT, SIGTERM or SIGHUP during a write removes that write's hidden temporary file
+// (the final names keep their previous complete files), then terminates as the signal would.
+extern "C" void on_terminating_signal(int sig) {
+    remove_temporaries_in_progress();
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+}
+
+void install_signal_handlers() {
+    struct sigaction action {};
+    action.sa_handler = on_terminating_signal;
+    sigemptyset(&action.sa_mask);
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaction(sig, &action, nullptr);
 }
 
 // ---------------------------------------------------------------- devices
@@ -94,6 +110,7 @@ void setup_eval(CLI::App &app, int &exit_code) {
 
 int main(int argc, char **argv) {
     using namespace scatterlut;
+    install_signal_handlers();
     for (int i = 0; i < argc; ++i) g_command_line += (i ? " " : "") + shell_quote(argv[i]);
 
     CLI::App app{"scatterlut: lookup tables for analytic single scattering in participating media"};

@@ -887,6 +887,47 @@ std::vector<uint8_t> read_file(const std::string &path) {
 
 } // namespace detail
 
+namespace {
+
+// The temporary files of the writes in progress, for remove_temporaries_in_progress (a
+// signal handler: it may only read these slots and unlink). A slot is claimed before its
+// path is written and published (`ready`) after, so the handler never reads a half-written
+// path. More concurrent writes than slots are still atomic, only not cleaned up on a signal.
+struct TemporaryFileSlot {
+    std::atomic<bool> claimed{false};
+    std::atomic<bool> ready{false};
+    char path[4096];
+};
+constexpr int kTemporaryFileSlots = 16;
+TemporaryFileSlot g_temporary_files[kTemporaryFileSlots];
+
+TemporaryFileSlot *register_temporary_file(const std::string &path) {
+    if (path.size() >= sizeof(TemporaryFileSlot::path)) return nullptr;
+    for (TemporaryFileSlot &slot : g_temporary_files) {
+        bool expected = false;
+        if (!slot.claimed.compare_exchange_strong(expected, true)) continue;
+        std::memcpy(slot.path, path.c_str(), path.size() + 1);
+        slot.ready.store(true);
+        return &slot;
+    }
+    return nullptr;
+}
+
+void release_temporary_file(TemporaryFileSlot *slot) {
+    if (!slot) return;
+    slot->ready.store(false);
+    slot->claimed.store(false);
+}
+
+static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs lock-free flags");
+
+} // namespace
+
+void remove_temporaries_in_progress() noexcept {
+    for (TemporaryFileSlot &slot : g_temporary_files)
+        if (slot.ready.load()) (void)::unlink(slot.path);
+}
+
 void write_file_atomic(const std::string &path, const std::vector<uint8_t> &bytes) {
     // Split path into directory and name (the temp file must be on the same file system).
     const size_t slash = path.find_last_of('/');
@@ -896,14 +937,22 @@ void write_file_atomic(const std::string &path, const std::vector<uint8_t> &byte
         throw std::system_error(EISDIR, std::generic_category(), path + ": not a file name");
 
     static std::atomic<unsigned> counter{0};
+    // The name is registered before the file exists, so a SIGINT or SIGTERM handler that calls
+    // remove_temporaries_in_progress (the scatterlut command's does) removes it at any moment
+    // until the rename. (A name taken already carries this PID: a dead process's leftover.)
     std::string tmp;
+    TemporaryFileSlot *slot = nullptr;
     int fd = -1;
     for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
         tmp = dir + "/." + base.substr(0, 180) + ".tmp-" + std::to_string(::getpid()) + "-" +
               std::to_string(counter.fetch_add(1));
+        slot = register_temporary_file(tmp);
         fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666); // umask applies
-        if (fd < 0 && errno != EEXIST)
-            throw std::system_error(errno, std::generic_category(),
+        if (fd >= 0) break;
+        const int err = errno;
+        release_temporary_file(slot);
+        if (err != EEXIST)
+            throw std::system_error(err, std::generic_category(),
                                     path + ": cannot create a temporary file in '" + dir + "'");
     }
     if (fd < 0)
@@ -913,6 +962,7 @@ void write_file_atomic(const std::string &path, const std::vector<uint8_t> &byte
     auto fail = [&](int err, const std::string &what) {
         if (fd >= 0) ::close(fd);
         ::unlink(tmp.c_str());
+        release_temporary_file(slot);
         throw std::system_error(err, std::generic_category(), path + ": " + what);
     };
     size_t done = 0;
@@ -929,6 +979,7 @@ void write_file_atomic(const std::string &path, const std::vector<uint8_t> &byte
     fd = -1;
     if (closed != 0) fail(errno, "close failed (previous file left intact)");
     if (::rename(tmp.c_str(), path.c_str()) != 0) fail(errno, "cannot rename the temporary file over it");
+    release_temporary_file(slot);
     // Make the rename itself durable (best effort: some file systems refuse).
     const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (dfd >= 0) {

@@ -86,6 +86,12 @@ uint64_t fnv1a64(const void *data, size_t size, uint64_t state = kFnv1a64Basis);
 // the previous file is untouched, and std::system_error names the path.
 void write_file_atomic(const std::string &path, const std::vector<uint8_t> &bytes);
 
+// Unlinks the temporary files of the write_file_atomic calls in progress in this process,
+// leaving every final name as it was. Async-signal-safe (reads lock-free flags, calls
+// unlink): meant for a SIGINT/SIGTERM handler, which then re-raises the signal. A SIGKILL
+// cannot be handled and leaves the hidden temporary file ('.NAME.tmp-PID-N').
+void remove_temporaries_in_progress() noexcept;
+
 namespace detail {
 // Shared by the binary and EXR codecs; not a stable API.
 std::vector<uint8_t> read_file(const std::string &path); // throws LoadError
