@@ -128,8 +128,9 @@ TEST(SceneGenerate, ExamplesValidateAtThePredictedError) {
 
 // A target the size bound cannot reach: the plan says UNREACHABLE with the error it did
 // reach, generate still writes that table (declaring its measured accuracy, which validate
-// confirms), flags it in the metadata and warns. 1e-4 on E with 0.3 MiB: the thick table at
-// 48×40×32 measures ~1e-2 (the candle plan above), and 0.3 MiB allows only ~1.25× the nodes.
+// confirms), flags it in the metadata and warns (with --fail-on-miss: exits 1). 1e-4 on E
+// with 0.3 MiB: the thick table at 48×40×32 measures ~1e-2 (the candle plan above), and
+// 0.3 MiB allows only ~1.25× the nodes.
 TEST(SceneGenerate, UnreachableTargetIsReportedHonestly) {
     const std::string base = slut_test::temp_stem("unreachable");
     std::ofstream(base + ".toml") << R"([accuracy]
@@ -164,6 +165,14 @@ distance_m = [0.005, 0.03]
     EXPECT_GT(table.accuracy.sampling_max_rel, 1e-4); // the error it reached, not the target
     const RunResult v = slut_test::run_scatterlut("validate " + file);
     EXPECT_EQ(v.exit_code, 0) << v.out;
+    std::filesystem::remove_all(base + "_out");
+
+    // --fail-on-miss (for CI): the same table is written, the miss is an error, exit 1.
+    const RunResult strict =
+        slut_test::run_scatterlut("generate --fail-on-miss --scene " + base + ".toml --out " + base + "_out --format bin", "", true);
+    EXPECT_EQ(strict.exit_code, 1) << strict.out;
+    EXPECT_NE(strict.out.find("error: near_light_E3: UNREACHABLE"), std::string::npos) << strict.out;
+    EXPECT_EQ(scatterlut::load_table(file).extra.at("plan.reached"), "false");
     std::filesystem::remove_all(base + "_out");
     std::filesystem::remove(base + ".toml");
 }
