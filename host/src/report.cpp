@@ -556,7 +556,12 @@ int run_report(const ReportOptions &opt, const std::string &command_line) {
                   " | " + (r.planned ? "planned" : "") + " |\n";
 
         md += "\n### Runtime methods\n\n![runtime methods](" + kind + "_methods.svg)\n\n";
-        md += "| method | what | ns/call | median | p90 | p99 | max |\n|---|---|---:|---:|---:|---:|---:|\n";
+        md += "Error: relative to exact quadrature, over the radiance queries above.";
+        if (is_airlight(t))
+            md += " The seed's thin-medium form (4.2) and distant-light limit (eq. 5) are near-light methods (a light "
+                  "outside the medium, DESIGN 1.3); for a viewer and a light inside the medium the table is the only "
+                  "approximation.";
+        md += "\n\n| method | what | ns/call | median | p90 | p99 | max |\n|---|---|---:|---:|---:|---:|---:|\n";
         for (const auto &r : methods) {
             auto e = [&](double v) { return r.reference ? std::string("reference") : fmt("%.2e", v); };
             md += "| " + r.name + " | " + r.what + " | " + fmt("%.4g", r.ns_per_call) + " | " + e(r.error.median) + " | " +
