@@ -96,7 +96,9 @@ TEST(NearLightKernel, EveryNodeMatchesBoostReference) {
             worst = std::max(worst, err);
         }
         std::printf("%s: %zu nodes, max rel err vs Boost %.2e\n", t.kind.c_str(), t.node_count(), worst);
-        EXPECT_LE(t.accuracy.integration_max_rel, 1e-12);
+        // The default integration tolerance 1e-11 (kNearLightIntegrationTolerance) measures
+        // ~1e-11; 1e-10 is the bound for the tables.
+        EXPECT_LE(t.accuracy.integration_max_rel, 1e-10);
     }
 }
 
@@ -251,7 +253,7 @@ TEST(NearLightTable, DefaultFiniteTableWithinOnePercent) {
     const scatterlut::Table &t = default_e4();
     EXPECT_LE(t.accuracy.sampling_max_rel, 1e-2);
     EXPECT_GT(t.accuracy.sampling_points, 15000u);
-    EXPECT_LE(t.accuracy.integration_max_rel, 1e-12);
+    EXPECT_LE(t.accuracy.integration_max_rel, 1e-10); // tolerance 1e-11: see EveryNodeMatchesBoostReference
     const scatterlut::NearLightTable table(t);
     const scatterlut::SamplingStats corners = scatterlut::measure_nearlight_corners(table, 20000, 3);
     std::printf("default E4: random max %.3e p99 %.3e; corners max %.3e p99 %.3e (%llu points)\n",
