@@ -40,7 +40,8 @@ __kernel void nearlight_ln_E(__global double *out,
     double floor_T = exp(-T), rise_T = -expm1(-T); /* the value base's factors of T alone */
     for (int iS0 = 0; iS0 < S_count; iS0 += SLUT_NL_MAX_SWEEP) {
         int n_S = min(SLUT_NL_MAX_SWEEP, S_count - iS0);
-        for (int i = 0; i < n_S; ++i) S[i] = (S_count == 1) ? S_min : slut_nl_S_node(&aS, T, g, iS0 + i);
+        if (S_count == 1) S[0] = S_min;
+        else slut_nl_S_nodes(&aS, T, g, iS0, n_S, S);
         slut_nl_E_sweep(T, g, S, n_S, r, SLUT_NL_MAX_LANES, E, refine);
         for (int i = 0; i < n_S; ++i) {
             double *E_i = &E[i * SLUT_NL_MAX_LANES];

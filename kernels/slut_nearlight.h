@@ -512,12 +512,16 @@ SLUT_FN double slut_nl_unit_from_S_between(double T, double g, double S, double 
 /* sin(x)/x (1 at x = 0). */
 SLUT_FN double slut_nl_sinc(double x) { return (x == 0.0) ? 1.0 : sin(x) / x; }
 
-/* The inverse: S with slut_nl_depth_odds(T, g, S) = sigma (> 0). */
-SLUT_FN double slut_nl_S_from_depth_odds(double T, double g, double sigma) {
-    double rho = sigma / (T * slut_nl_H_scaled(g, SLUT_HUGE_VAL)); /* q/(1 − q) */
-    double q = rho / (1.0 + rho), q_out = 1.0 / (1.0 + rho);      /* q and 1 − q, both to full precision */
-    double theta = atan2(slut_nl_sin_from_cos(g), g);
+/* The inverse: S with slut_nl_depth_odds(T, g, S) = sigma (> 0), given T·H∞ = TH_inf
+ * (slut_nl_H_scaled(g, ∞)) and θ = acos g = atan2(√(1 − g²), g). */
+SLUT_FN double slut_nl_S_from_depth_odds_given(double T, double TH_inf, double theta, double sigma) {
+    double rho = sigma / (T * TH_inf);                        /* q/(1 − q) */
+    double q = rho / (1.0 + rho), q_out = 1.0 / (1.0 + rho); /* q and 1 − q, both to full precision */
     return T * rho * slut_nl_sinc(q * theta) / slut_nl_sinc(q_out * theta);
+}
+SLUT_FN double slut_nl_S_from_depth_odds(double T, double g, double sigma) {
+    return slut_nl_S_from_depth_odds_given(T, slut_nl_H_scaled(g, SLUT_HUGE_VAL), atan2(slut_nl_sin_from_cos(g), g),
+                                           sigma);
 }
 
 /* S → unit coordinate x on the slab axis a (SLUT_WARP_NL_QODDS) at (T, g); not clamped. */
@@ -525,12 +529,39 @@ SLUT_FN double slut_nl_unit_from_S(const slut_axis *a, double T, double g, doubl
     return slut_nl_unit_from_S_between(T, g, S, a->min, a->max);
 }
 
+/* The slab axis's q map at one (T, g): what all its nodes share (the ends' ln σ, T·H∞, θ;
+ * ~8 atan), computed once by slut_nl_slab_at, and the per-node part slut_nl_slab_S (an exp
+ * and two sin). */
+typedef struct slut_nl_slab {
+    double T, TH_inf, theta; /* T, T·H∞ = slut_nl_H_scaled(g, ∞), θ = acos g  */
+    double lo, hi;           /* ln σ at the axis ends S_min, S_max              */
+    double S_min, S_max;
+} slut_nl_slab;
+
+SLUT_FN void slut_nl_slab_at(const slut_axis *a, double T, double g, slut_nl_slab *s) {
+    s->T = T;
+    s->TH_inf = slut_nl_H_scaled(g, SLUT_HUGE_VAL);
+    s->theta = atan2(slut_nl_sin_from_cos(g), g);
+    s->lo = log(slut_nl_depth_odds(T, g, a->min));
+    s->hi = log(slut_nl_depth_odds(T, g, a->max));
+    s->S_min = a->min;
+    s->S_max = a->max;
+}
+
+/* Unit coordinate x → S in the slab s; the ends exact. */
+SLUT_FN double slut_nl_slab_S(const slut_nl_slab *s, double x) {
+    if (x <= 0.0) return s->S_min;
+    if (x >= 1.0) return s->S_max;
+    return slut_nl_S_from_depth_odds_given(s->T, s->TH_inf, s->theta, exp(s->lo + x * (s->hi - s->lo)));
+}
+
 /* Unit coordinate x → S on the slab axis a at (T, g); the ends exact. */
 SLUT_FN double slut_nl_S_from_unit(const slut_axis *a, double T, double g, double x) {
     if (x <= 0.0) return a->min;
     if (x >= 1.0) return a->max;
-    double lo = log(slut_nl_depth_odds(T, g, a->min)), hi = log(slut_nl_depth_odds(T, g, a->max));
-    return slut_nl_S_from_depth_odds(T, g, exp(lo + x * (hi - lo)));
+    slut_nl_slab s;
+    slut_nl_slab_at(a, T, g, &s);
+    return slut_nl_slab_S(&s, x);
 }
 
 /* S of node i of a slab axis at (T, g): the q map for SLUT_WARP_NL_QODDS, else the axis's own
@@ -538,6 +569,18 @@ SLUT_FN double slut_nl_S_from_unit(const slut_axis *a, double T, double g, doubl
 SLUT_FN double slut_nl_S_node(const slut_axis *a, double T, double g, int i) {
     if (a->warp != SLUT_WARP_NL_QODDS) return slut_axis_node(a, i);
     return slut_nl_S_from_unit(a, T, g, (double)i / (double)(a->count - 1));
+}
+
+/* S_out[k] = slut_nl_S_node(a, T, g, first + k) for k < count (the same values), the shared
+ * part of the q map computed once. */
+SLUT_FN void slut_nl_S_nodes(const slut_axis *a, double T, double g, int first, int count, double *S_out) {
+    if (a->warp != SLUT_WARP_NL_QODDS) {
+        for (int k = 0; k < count; ++k) S_out[k] = slut_axis_node(a, first + k);
+        return;
+    }
+    slut_nl_slab s;
+    slut_nl_slab_at(a, T, g, &s);
+    for (int k = 0; k < count; ++k) S_out[k] = slut_nl_slab_S(&s, (double)(first + k) / (double)(a->count - 1));
 }
 
 /* ------------------------------------------------------------------ parameters from geometry */
