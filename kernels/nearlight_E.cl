@@ -9,20 +9,24 @@
  * from its slab axis (slut_nl_S_node: the q map of slut_nearlight.h for warp
  * SLUT_WARP_NL_QODDS; ascending in iS at every (T, g)).
  *
- * The nodes of T, g and r come from the host (slut_axis_node there: the node values every
- * table reader assumes, and no per-work-item transcendental); S depends on (T, g) and is
- * computed here. A partial last r group is padded to SLUT_NL_MAX_LANES lanes with its last r (the sweep's
- * lane vectors are full; the padding changes no mesh rule) and only the real lanes are
- * stored. The logarithm is taken on the lane vector (a scalar log costs ~20× more per element:
- * POCL-NOTES.md).
+ * The nodes of T, g and r come from the host (T_nodes[i] = slut_axis_node of the table's axis
+ * there: the node values every table reader assumes, and no transcendental per work-item);
+ * S depends on (T, g) and is computed here. A partial last r group is padded to
+ * SLUT_NL_MAX_LANES lanes with its last r (the sweep's lane vector is full; the padding
+ * changes no mesh rule) and only the real lanes are stored. The logarithm is taken on the
+ * lane vector (a scalar log costs ~20× more per element: POCL-NOTES.md).
  */
 #include "slut_axes.h"
 #include "slut_nearlight.h"
 
+#if SLUT_NL_LANE_WIDTH != SLUT_NL_MAX_LANES
+#error "the kernel takes one r group as one lane vector"
+#endif
+
 __kernel void nearlight_ln_E(__global double *out,
-                             __global const double *T_nodes, int T_count, /* slut_axis_node of each axis, */
-                             __global const double *g_nodes, int g_count, /* from the host: the nodes      */
-                             __global const double *r_nodes, int r_count, /* its tables' lookups assume    */
+                             __global const double *T_nodes, int T_count,
+                             __global const double *g_nodes, int g_count,
+                             __global const double *r_nodes, int r_count,
                              double S_min, double S_max, double S_scale, int S_warp, int S_count,
                              double refine) {
     int group = get_global_id(0);
@@ -47,8 +51,7 @@ __kernel void nearlight_ln_E(__global double *out,
             double *E_i = &E[i * SLUT_NL_MAX_LANES];
             if (S_count > 1)
                 for (int l = 0; l < lanes; ++l) E_i[l] /= slut_nl_E_base_from(floor_T, rise_T, T, r[l], S[i]);
-            double16 ln_E = log(vload16(0, E_i));
-            vstore16(ln_E, 0, E_i);
+            slut_nl_lanes_store(log(slut_nl_lanes_load(E_i)), E_i);
             for (int l = 0; l < lanes; ++l)
                 out[(((size_t)(iS0 + i) * r_count + (size_t)(ir0 + l)) * g_count + ig) * T_count + iT] = E_i[l];
         }

@@ -122,10 +122,10 @@ SLUT_FN double slut_nl_H(double T, double g, double S) {
 /* ------------------------------------------------------------------ lane vectors */
 
 /* The lanes of a march (the r values sharing one panel mesh, slut_nl_E_sweep) in blocks of
- * SLUT_NL_LANE_WIDTH elements of type slut_nl_lanes: a double8 on the device, a double on
- * the host. Why: per (node, lane) the sweep costs one divide and one exp; PoCL does not
- * vectorise a scalar loop over the lanes, and a scalar exp costs ~36 core cycles against ~3
- * per element of a double8 exp (POCL-NOTES.md). The sweep is written once on slut_nl_lanes
+ * SLUT_NL_LANE_WIDTH elements of type slut_nl_lanes: a double16 on the device (one block for
+ * a full group), a double on the host. Why: per (node, lane) the sweep costs one divide and
+ * one exp; PoCL does not vectorise a scalar loop over the lanes, and a scalar exp costs ~36
+ * core cycles against ~3 per element of a vector exp (POCL-NOTES.md). The sweep is written once on slut_nl_lanes
  * with C operators and the builtins exp, fmin, fmax (overloaded for vectors in OpenCL C);
  * only these definitions differ between the languages:
  *   SLUT_NL_LANES_SPLAT(x)         every element x;
@@ -218,8 +218,9 @@ SLUT_FN slut_nl_lanes slut_nl_layer_slope(double tau, slut_nl_lanes r) {
  * nodes). Measured: at refine = 1 the rule reaches 6e-15 against refine = 2.5 over 3000 random
  * (T, g, r, S), and its error grows like refine^−15 below that (2.6e-10 at 1/2, 1e-5 at
  * 1/5; the 16-point rule's h^32 is halved by the layer and ellipse terms, which scale
- * more slowly) — so refine = (eps/1e-14)^(−1/15), at most 1 (the production rule), at least
- * 0.15 (below it the ellipse bound A → 1 loses control of the poles). The report's
+ * more slowly) — so refine = (eps/1e-14)^(−1/15), at most 1 (the rule as derived, which
+ * slut_nl_E uses; the tables default to eps = 1e-11, refine 0.63: generate_nearlight.hpp),
+ * at least 0.15 (below it the ellipse bound A → 1 loses control of the poles). The report's
  * tolerance ladder re-measures what each eps reaches. */
 SLUT_FN double slut_nl_refine_for_tolerance(double eps) {
     double refine = pow(eps / 1e-14, -1.0 / 15.0);
