@@ -8,14 +8,25 @@
  * gets ln E; a 4-D table gets ln(E/B), B = slut_nl_E_base (the value base), with S at node iS
  * from its slab axis (slut_nl_S_node: the q map of slut_nearlight.h for warp
  * SLUT_WARP_NL_QODDS; ascending in iS at every (T, g)).
+ *
+ * The nodes of T, g and r come from the host (T_nodes[i] = slut_axis_node of the table's axis
+ * there: the node values every table reader assumes, and no transcendental per work-item);
+ * S depends on (T, g) and is computed here. A partial last r group is padded to
+ * SLUT_NL_MAX_LANES lanes with its last r (the sweep's lane vector is full; the padding
+ * changes no mesh rule) and only the real lanes are stored. The logarithm is taken on the
+ * lane vector (a scalar log costs ~20× more per element: POCL-NOTES.md).
  */
 #include "slut_axes.h"
 #include "slut_nearlight.h"
 
+#if SLUT_NL_LANE_WIDTH != SLUT_NL_MAX_LANES
+#error "the kernel takes one r group as one lane vector"
+#endif
+
 __kernel void nearlight_ln_E(__global double *out,
-                             double T_min, double T_max, double T_scale, int T_warp, int T_count,
-                             double g_min, double g_max, double g_scale, int g_warp, int g_count,
-                             double r_min, double r_max, double r_scale, int r_warp, int r_count,
+                             __global const double *T_nodes, int T_count,
+                             __global const double *g_nodes, int g_count,
+                             __global const double *r_nodes, int r_count,
                              double S_min, double S_max, double S_scale, int S_warp, int S_count,
                              double refine) {
     int group = get_global_id(0);
@@ -23,26 +34,26 @@ __kernel void nearlight_ln_E(__global double *out,
     int iT = get_global_id(2);
     int ir0 = group * SLUT_NL_MAX_LANES;
     if (ir0 >= r_count || ig >= g_count || iT >= T_count) return;
-    slut_axis aT, ag, ar, aS;
-    aT.min = T_min; aT.max = T_max; aT.scale = T_scale; aT.warp = T_warp; aT.count = T_count;
-    ag.min = g_min; ag.max = g_max; ag.scale = g_scale; ag.warp = g_warp; ag.count = g_count;
-    ar.min = r_min; ar.max = r_max; ar.scale = r_scale; ar.warp = r_warp; ar.count = r_count;
+    slut_axis aS;
     aS.min = S_min; aS.max = S_max; aS.scale = S_scale; aS.warp = S_warp; aS.count = S_count;
-    double T = slut_axis_node(&aT, iT);
-    double g = slut_axis_node(&ag, ig);
+    double T = T_nodes[iT];
+    double g = g_nodes[ig];
     int lanes = min(SLUT_NL_MAX_LANES, r_count - ir0);
     double r[SLUT_NL_MAX_LANES], S[SLUT_NL_MAX_SWEEP], E[SLUT_NL_MAX_SWEEP * SLUT_NL_MAX_LANES];
-    for (int l = 0; l < lanes; ++l) r[l] = slut_axis_node(&ar, ir0 + l);
+    for (int l = 0; l < SLUT_NL_MAX_LANES; ++l) r[l] = r_nodes[min(ir0 + l, ir0 + lanes - 1)];
+    double floor_T = exp(-T), rise_T = -expm1(-T); /* the value base's factors of T alone */
     for (int iS0 = 0; iS0 < S_count; iS0 += SLUT_NL_MAX_SWEEP) {
         int n_S = min(SLUT_NL_MAX_SWEEP, S_count - iS0);
-        for (int i = 0; i < n_S; ++i) S[i] = (S_count == 1) ? S_min : slut_nl_S_node(&aS, T, g, iS0 + i);
-        slut_nl_E_sweep(T, g, S, n_S, r, lanes, E, refine);
+        if (S_count == 1) S[0] = S_min;
+        else slut_nl_S_nodes(&aS, T, g, iS0, n_S, S);
+        slut_nl_E_sweep(T, g, S, n_S, r, SLUT_NL_MAX_LANES, E, refine);
         for (int i = 0; i < n_S; ++i) {
-            for (int l = 0; l < lanes; ++l) {
-                double base = (S_count == 1) ? 1.0 : slut_nl_E_base(T, r[l], S[i]);
-                out[(((size_t)(iS0 + i) * r_count + (size_t)(ir0 + l)) * g_count + ig) * T_count + iT] =
-                    log(E[i * lanes + l] / base);
-            }
+            double *E_i = &E[i * SLUT_NL_MAX_LANES];
+            if (S_count > 1)
+                for (int l = 0; l < lanes; ++l) E_i[l] /= slut_nl_E_base_from(floor_T, rise_T, T, r[l], S[i]);
+            slut_nl_lanes_store(log(slut_nl_lanes_load(E_i)), E_i);
+            for (int l = 0; l < lanes; ++l)
+                out[(((size_t)(iS0 + i) * r_count + (size_t)(ir0 + l)) * g_count + ig) * T_count + iT] = E_i[l];
         }
     }
 }

@@ -110,7 +110,8 @@ SLUT_FN double slut_nl_H(double T, double g, double S) {
                                      inputs (r = 1e-300, T = 700) ~300                     */
 #define SLUT_NL_EFOLDS 12.0       /* max e-folds of the integrand's exponent per panel    */
 #define SLUT_NL_ELLIPSE 2.0       /* min (dist(a) + dist(b))/(b − a) for every singularity */
-#define SLUT_NL_TAIL_EPS 1e-16    /* stop once the remainder bound is below this × sum     */
+#define SLUT_NL_TAIL_EPS 1e-16    /* stop once the remainder bound is below this × sum, at
+                                     refine = 1 (× refine^−15: the rule's error, below)     */
 
 /* The quadrature works in units of T: τ = t/T, δ = τ + g, η = ĥ/T = √(δ² + 1 − g²), so
  *   T·N = ∫_0^{S/T} exp(−T (τ + η τ/(τ + r))) / η² dτ,   T·H = ∫_0^{S/T} η^{−2} dτ.
@@ -118,14 +119,71 @@ SLUT_FN double slut_nl_H(double T, double g, double S) {
  * underflows η² nor overflows T²); T appears only as the exponent's scale. The layer sits
  * at τ ~ r, the peak at τ* = −g with width √(1 − g²), the poles of 1/η² at −g ± i√(1−g²). */
 
-/* q(τ) = τ/(τ + r): the fraction of the light path inside the medium. r = 0 gives q = 1
- * (for τ > 0; τ = 0 is never a node), r = ∞ gives q = 0. */
-SLUT_FN double slut_nl_q(double tau, double r) { return (r > 0.0) ? tau / (tau + r) : 1.0; }
+/* ------------------------------------------------------------------ lane vectors */
 
-/* r/(τ + r)² = dq/dτ: the layer's share of the exponent's slope, divided by Tη (0 for r = 0, ∞). */
-SLUT_FN double slut_nl_layer_slope(double tau, double r) {
-    if (!(r > 0.0) || r > 1e300) return 0.0;
-    return (r / (tau + r)) / (tau + r);
+/* The lanes of a march (the r values sharing one panel mesh, slut_nl_E_sweep) in blocks of
+ * SLUT_NL_LANE_WIDTH elements of type slut_nl_lanes: a double16 on the device (one block for
+ * a full group), a double on the host. Why: per (node, lane) the sweep costs one divide and
+ * one exp; PoCL does not vectorise a scalar loop over the lanes, and a scalar exp costs ~36
+ * core cycles against ~3 per element of a vector exp (POCL-NOTES.md). The sweep is written once on slut_nl_lanes
+ * with C operators and the builtins exp, fmin, fmax (overloaded for vectors in OpenCL C);
+ * only these definitions differ between the languages:
+ *   SLUT_NL_LANES_SPLAT(x)         every element x;
+ *   SLUT_NL_LANES_SELECT(a, b, c)  b where the lane comparison c holds, else a (both evaluated);
+ *   SLUT_NL_LANES_ANY(c)           whether c holds in some element;
+ *   slut_nl_lanes_load             a block from SLUT_NL_LANE_WIDTH consecutive doubles;
+ *   slut_nl_lanes_max / _min       the largest / smallest element.
+ * Lane comparisons combine with & (a vector comparison is −1/0 per element, a scalar one 1/0:
+ * never mix the two). */
+#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
+#define SLUT_NL_LANE_WIDTH 16
+typedef double16 slut_nl_lanes;
+#define SLUT_NL_LANES_SPLAT(x) ((double16)(x))
+#define SLUT_NL_LANES_SELECT(a, b, c) select((a), (b), (c))
+#define SLUT_NL_LANES_ANY(c) any(c)
+SLUT_FN slut_nl_lanes slut_nl_lanes_load(const double *p) { return vload16(0, p); }
+SLUT_FN void slut_nl_lanes_store(slut_nl_lanes v, double *p) { vstore16(v, 0, p); }
+SLUT_FN double slut_nl_lanes_max(slut_nl_lanes v) {
+    double8 a = fmax(v.lo, v.hi);
+    double4 b = fmax(a.lo, a.hi);
+    double2 c = fmax(b.lo, b.hi);
+    return fmax(c.x, c.y);
+}
+SLUT_FN double slut_nl_lanes_min(slut_nl_lanes v) {
+    double8 a = fmin(v.lo, v.hi);
+    double4 b = fmin(a.lo, a.hi);
+    double2 c = fmin(b.lo, b.hi);
+    return fmin(c.x, c.y);
+}
+#else
+#define SLUT_NL_LANE_WIDTH 1
+typedef double slut_nl_lanes;
+#define SLUT_NL_LANES_SPLAT(x) ((double)(x))
+#define SLUT_NL_LANES_SELECT(a, b, c) ((c) ? (b) : (a))
+#define SLUT_NL_LANES_ANY(c) (c)
+SLUT_FN slut_nl_lanes slut_nl_lanes_load(const double *p) { return *p; }
+SLUT_FN void slut_nl_lanes_store(slut_nl_lanes v, double *p) { *p = v; }
+SLUT_FN double slut_nl_lanes_max(slut_nl_lanes v) { return v; }
+SLUT_FN double slut_nl_lanes_min(slut_nl_lanes v) { return v; }
+#endif
+#define SLUT_NL_LANE_BLOCKS (SLUT_NL_MAX_LANES / SLUT_NL_LANE_WIDTH) /* blocks of a full group */
+
+/* Lanes first_lane … first_lane + W − 1 of out[] (those below `lanes`) from block v. */
+SLUT_FN void slut_nl_lanes_put(slut_nl_lanes v, double *out, int first_lane, int lanes) {
+    double e[SLUT_NL_LANE_WIDTH];
+    slut_nl_lanes_store(v, e);
+    for (int k = 0; k < SLUT_NL_LANE_WIDTH && first_lane + k < lanes; ++k) out[first_lane + k] = e[k];
+}
+
+/* q(τ) = τ/(τ + r): the fraction of the light path inside the medium, for τ > 0 (every
+ * quadrature node and every panel start after the first). r = 0 gives q = 1 exactly (x/x),
+ * r = +∞ gives q = 0. */
+SLUT_FN slut_nl_lanes slut_nl_q(double tau, slut_nl_lanes r) { return tau / (tau + r); }
+
+/* r/(τ + r)² = dq/dτ: the layer's share of the exponent's slope, divided by Tη; 0 for r = 0
+ * and r = +∞ (also at τ = 0, where 0/0 would arise). */
+SLUT_FN slut_nl_lanes slut_nl_layer_slope(double tau, slut_nl_lanes r) {
+    return SLUT_NL_LANES_SELECT(SLUT_NL_LANES_SPLAT(0.0), (r / (tau + r)) / (tau + r), (r > 0.0) & (r <= 1e300));
 }
 
 /* Length h of the next Gauss–Legendre panel [τ, τ + h] (16 points), in units of T;
@@ -160,8 +218,9 @@ SLUT_FN double slut_nl_layer_slope(double tau, double r) {
  * nodes). Measured: at refine = 1 the rule reaches 6e-15 against refine = 2.5 over 3000 random
  * (T, g, r, S), and its error grows like refine^−15 below that (2.6e-10 at 1/2, 1e-5 at
  * 1/5; the 16-point rule's h^32 is halved by the layer and ellipse terms, which scale
- * more slowly) — so refine = (eps/1e-14)^(−1/15), at most 1 (the production rule), at least
- * 0.15 (below it the ellipse bound A → 1 loses control of the poles). The report's
+ * more slowly) — so refine = (eps/1e-14)^(−1/15), at most 1 (the rule as derived, which
+ * slut_nl_E uses; the tables default to eps = 1e-11, refine 0.63: generate_nearlight.hpp),
+ * at least 0.15 (below it the ellipse bound A → 1 loses control of the poles). The report's
  * tolerance ladder re-measures what each eps reaches. */
 SLUT_FN double slut_nl_refine_for_tolerance(double eps) {
     double refine = pow(eps / 1e-14, -1.0 / 15.0);
@@ -205,7 +264,10 @@ SLUT_FN double slut_nl_panel_length(double tau, double dl, double eta, double r_
  * 1 + q0 η' ≥ 1 − q0 ≥ 0 (η is 1-Lipschitz). So for τ' ≥ τ, a(τ') ≤ a(τ) e^{−T(1−q0)(τ'−τ)}
  * and the remainder of lane j up to the last node is at most
  *   R_j = a_j(τ) · min(∫_τ^{S/T} η^{−2}, 1/(T (1 − q0) η_min²)),  η_min = min of η on [τ, S/T]
- * (a bound, not an estimate); the march stops once R_j ≤ SLUT_NL_TAIL_EPS × (sum so far)
+ * (a bound, not an estimate); the march stops once R_j ≤ ε_tail × (sum so far), ε_tail =
+ * SLUT_NL_TAIL_EPS·refine^−15: the panel rule's error scales like refine^−15
+ * (slut_nl_refine_for_tolerance), the truncation follows it 100× below (1e-13 at the default
+ * tolerance 1e-11, 6 % fewer nodes than 1e-16 there)
  * for every lane. The remainder up to an earlier node S_i is smaller still (a sub-interval,
  * the same sum so far), so the nodes not reached take the sum at the stop. A peak or layer
  * still ahead keeps a_j(τ)·∫η^{−2} large unless the attenuation already makes it
@@ -216,10 +278,29 @@ SLUT_FN double slut_nl_panel_length(double tau, double dl, double eta, double r_
  * weight concentrates at t = T where ĥ = 0, so E = e^{−T}. In a sweep the first are a
  * prefix of the nodes and the last a suffix; the march covers the nodes between.
  * Citation: DESIGN.md §1.2; panel rules as in POCL-NOTES.md ("near-light integral"). */
+/* The sweep's stopping test at a panel start τ (see "Stopping" above): whether for every lane
+ * the remainder bound a_j(τ)·min(rest, 1/(T(1 − q0) η_min²)·inv_H) is ≤ tail_eps × sum
+ * so far; rest = the normalised ∫ η^{−2} up to the last node (or a lower bound of it: then a
+ * "no" is final), eta_min2 = η_min². */
+SLUT_FN int slut_nl_rest_negligible(const slut_nl_lanes *rr, const slut_nl_lanes *sum, int blocks, double T,
+                                    double tau, double eta, double eta_min2, double inv_H, double rest,
+                                    double tail_eps) {
+    for (int b = 0; b < blocks; ++b) {
+        slut_nl_lanes q0 = slut_nl_q(tau, rr[b]);
+        slut_nl_lanes rest2 = SLUT_NL_LANES_SPLAT(SLUT_HUGE_VAL);
+        if (eta_min2 > 0.0) rest2 = SLUT_NL_LANES_SELECT(rest2, inv_H / (T * (1.0 - q0) * eta_min2), q0 < 1.0);
+        if (SLUT_NL_LANES_ANY(exp(-T * (tau + eta * q0)) * fmin(rest2, rest) > tail_eps * sum[b])) return 0;
+    }
+    return 1;
+}
+
 SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const double *r, int lanes,
                             double *E_out, double refine) {
-    double rr[SLUT_NL_MAX_LANES], sum[SLUT_NL_MAX_LANES];
-    int i, j;
+    /* The lanes in blocks (slut_nl_lanes): a partial last block repeats the last r, which
+     * changes no mesh rule (a maximum or minimum over the lanes) and is never stored. */
+    slut_nl_lanes rr[SLUT_NL_LANE_BLOCKS], sum[SLUT_NL_LANE_BLOCKS];
+    double r_padded[SLUT_NL_MAX_LANES];
+    int i, j, b;
     SLUT_ASSERT(lanes >= 1 && lanes <= SLUT_NL_MAX_LANES);
     SLUT_ASSERT(n_S >= 1 && n_S <= SLUT_NL_MAX_SWEEP);
     if (lanes > SLUT_NL_MAX_LANES) lanes = SLUT_NL_MAX_LANES;
@@ -253,10 +334,16 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
     double H_next = slut_nl_H_scaled(g, (first == stop - 1) ? (finite_S ? tau_end : SLUT_HUGE_VAL) : S[first] / T);
     double inv_H = 1.0 / H_next;
     double sg2 = sg * sg, half_peak = -0.5 * g;
-    for (j = 0; j < lanes; ++j) {
-        SLUT_ASSERT(r[j] >= 0.0);
-        rr[j] = (r[j] < 1e300) ? r[j] : SLUT_HUGE_VAL;
-        sum[j] = 0.0;
+    double tail_eps = SLUT_NL_TAIL_EPS / pow(refine, 15.0);
+    int blocks = (lanes + SLUT_NL_LANE_WIDTH - 1) / SLUT_NL_LANE_WIDTH;
+    for (j = 0; j < blocks * SLUT_NL_LANE_WIDTH; ++j) {
+        double r_j = r[(j < lanes) ? j : lanes - 1];
+        SLUT_ASSERT(r_j >= 0.0);
+        r_padded[j] = (r_j < 1e300) ? r_j : SLUT_HUGE_VAL;
+    }
+    for (b = 0; b < blocks; ++b) {
+        rr[b] = slut_nl_lanes_load(&r_padded[b * SLUT_NL_LANE_WIDTH]);
+        sum[b] = SLUT_NL_LANES_SPLAT(0.0);
     }
     double tau = 0.0, dl = g;        /* march state: τ and δ = τ + g (one of them exact) */
     int carry_d = 0;                 /* 1 once the march carries δ (near the peak) */
@@ -270,23 +357,29 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
         if (panel > 0) {
             double d_min = (dl >= 0.0) ? dl : ((finite_S && d_end < 0.0) ? d_end : 0.0); /* η_min's δ */
             double eta_min2 = d_min * d_min + sg2;
-            double rest = inv_H * slut_nl_inv_square_integral(finite_S ? tau_end - tau : SLUT_HUGE_VAL, eta2, dl, sg);
-            int done = 1;
-            for (j = 0; j < lanes; ++j) {
-                double q0 = slut_nl_q(tau, rr[j]);
-                double rest2 = (q0 < 1.0 && eta_min2 > 0.0) ? inv_H / (T * (1.0 - q0) * eta_min2) : SLUT_HUGE_VAL;
-                if (exp(-T * (tau + eta * q0)) * fmin(rest, rest2) > SLUT_NL_TAIL_EPS * sum[j]) done = 0;
-            }
-            if (done) break;
+            double len = finite_S ? tau_end - tau : SLUT_HUGE_VAL;
+            /* First with a lower bound of ∫ η^{−2} that needs no atan: η(τ + x) ≤ η + x
+             * (1-Lipschitz), so ∫_0^len (η + x)^{−2} dx = len/(η(η + len)) (1/η for len = ∞)
+             * is below it (× (1 − 1e-12): below the rounded exact value too). A lane that is
+             * not negligible with it is not with the exact integral either, so the exact one
+             * (an atan) is evaluated only when the march may stop: the same decision. */
+            double rest_low = (1.0 - 1e-12) * inv_H * (finite_S ? len / (eta * (eta + len)) : 1.0 / eta);
+            if (slut_nl_rest_negligible(rr, sum, blocks, T, tau, eta, eta_min2, inv_H, rest_low, tail_eps) &&
+                slut_nl_rest_negligible(rr, sum, blocks, T, tau, eta, eta_min2, inv_H,
+                                        inv_H * slut_nl_inv_square_integral(len, eta2, dl, sg), tail_eps))
+                break;
         }
         /* Layer slope (max over lanes) and the nearest layer singularity −r that still matters:
          * on [τ, τ + h] the layer changes the exponent by Tηr/(τ'+r) ≤ T r·max(η(τ)/(τ+r), 1);
          * below 1e-17 it changes no double and its pole needs no rule (else r = 1e-300 would
          * cost ~700 geometric panels). */
         double k_rate = 0.0, r_pole = SLUT_HUGE_VAL;
-        for (j = 0; j < lanes; ++j) {
-            k_rate = fmax(k_rate, slut_nl_layer_slope(tau, rr[j]));
-            if (rr[j] > 0.0 && rr[j] < r_pole && T * rr[j] * fmax(eta / (tau + rr[j]), 1.0) > 1e-17) r_pole = rr[j];
+        for (b = 0; b < blocks; ++b) {
+            slut_nl_lanes matters = SLUT_NL_LANES_SELECT(
+                SLUT_NL_LANES_SPLAT(SLUT_HUGE_VAL), rr[b],
+                (rr[b] > 0.0) & (T * rr[b] * fmax(eta / (tau + rr[b]), 1.0) > 1e-17));
+            k_rate = fmax(k_rate, slut_nl_lanes_max(slut_nl_layer_slope(tau, rr[b])));
+            r_pole = fmin(r_pole, slut_nl_lanes_min(matters));
         }
         double h = slut_nl_panel_length(tau, dl, eta, r_pole, k_rate, T, refine);
         SLUT_ASSERT(h > 0.0);
@@ -308,7 +401,7 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
                 double dn = carry_d ? dl + off : tn + g;
                 double en2 = dn * dn + sg2, en = sqrt(en2);
                 double base = half_len * slut_gl16_w[k] * inv_H / en2;
-                for (j = 0; j < lanes; ++j) sum[j] += base * exp(-T * (tn + en * slut_nl_q(tn, rr[j])));
+                for (b = 0; b < blocks; ++b) sum[b] += base * exp(-T * (tn + en * slut_nl_q(tn, rr[b])));
                 ++nodes;
             }
         }
@@ -316,14 +409,15 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
             /* Record every node at this depth (equal S values share it), then renormalise the
              * sums from this node's T·H to the next one's. */
             while (next < stop && SLUT_NL_NODE_TAU(next) <= tau_node) {
-                for (j = 0; j < lanes; ++j) E_out[next * lanes + j] = fmin(sum[j], 1.0);
+                for (b = 0; b < blocks; ++b)
+                    slut_nl_lanes_put(fmin(sum[b], 1.0), &E_out[next * lanes], b * SLUT_NL_LANE_WIDTH, lanes);
                 ++next;
             }
             if (next >= stop) break;
             double H_node = H_next;
             H_next = slut_nl_H_scaled(g, SLUT_NL_NODE_TAU(next));
             inv_H = 1.0 / H_next;
-            for (j = 0; j < lanes; ++j) sum[j] *= H_node / H_next;
+            for (b = 0; b < blocks; ++b) sum[b] *= H_node / H_next;
             if (carry_d) { dl = d_node; tau = dl - g; }
             else { tau = tau_node; dl = tau + g; }
             continue;
@@ -335,7 +429,8 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
      * renormalised from the next node's T·H to their own. */
     for (i = next; i < stop; ++i) {
         double scale = (i == next) ? 1.0 : H_next / slut_nl_H_scaled(g, SLUT_NL_NODE_TAU(i));
-        for (j = 0; j < lanes; ++j) E_out[i * lanes + j] = fmin(sum[j] * scale, 1.0);
+        for (b = 0; b < blocks; ++b)
+            slut_nl_lanes_put(fmin(sum[b] * scale, 1.0), &E_out[i * lanes], b * SLUT_NL_LANE_WIDTH, lanes);
     }
 #undef SLUT_NL_NODE_TAU
     return nodes;
@@ -424,12 +519,16 @@ SLUT_FN double slut_nl_unit_from_S_between(double T, double g, double S, double 
 /* sin(x)/x (1 at x = 0). */
 SLUT_FN double slut_nl_sinc(double x) { return (x == 0.0) ? 1.0 : sin(x) / x; }
 
-/* The inverse: S with slut_nl_depth_odds(T, g, S) = sigma (> 0). */
-SLUT_FN double slut_nl_S_from_depth_odds(double T, double g, double sigma) {
-    double rho = sigma / (T * slut_nl_H_scaled(g, SLUT_HUGE_VAL)); /* q/(1 − q) */
-    double q = rho / (1.0 + rho), q_out = 1.0 / (1.0 + rho);      /* q and 1 − q, both to full precision */
-    double theta = atan2(slut_nl_sin_from_cos(g), g);
+/* The inverse: S with slut_nl_depth_odds(T, g, S) = sigma (> 0), given T·H∞ = TH_inf
+ * (slut_nl_H_scaled(g, ∞)) and θ = acos g = atan2(√(1 − g²), g). */
+SLUT_FN double slut_nl_S_from_depth_odds_given(double T, double TH_inf, double theta, double sigma) {
+    double rho = sigma / (T * TH_inf);                        /* q/(1 − q) */
+    double q = rho / (1.0 + rho), q_out = 1.0 / (1.0 + rho); /* q and 1 − q, both to full precision */
     return T * rho * slut_nl_sinc(q * theta) / slut_nl_sinc(q_out * theta);
+}
+SLUT_FN double slut_nl_S_from_depth_odds(double T, double g, double sigma) {
+    return slut_nl_S_from_depth_odds_given(T, slut_nl_H_scaled(g, SLUT_HUGE_VAL), atan2(slut_nl_sin_from_cos(g), g),
+                                           sigma);
 }
 
 /* S → unit coordinate x on the slab axis a (SLUT_WARP_NL_QODDS) at (T, g); not clamped. */
@@ -437,12 +536,39 @@ SLUT_FN double slut_nl_unit_from_S(const slut_axis *a, double T, double g, doubl
     return slut_nl_unit_from_S_between(T, g, S, a->min, a->max);
 }
 
+/* The slab axis's q map at one (T, g): what all its nodes share (the ends' ln σ, T·H∞, θ;
+ * ~8 atan), computed once by slut_nl_slab_at, and the per-node part slut_nl_slab_S (an exp
+ * and two sin). */
+typedef struct slut_nl_slab {
+    double T, TH_inf, theta; /* T, T·H∞ = slut_nl_H_scaled(g, ∞), θ = acos g  */
+    double lo, hi;           /* ln σ at the axis ends S_min, S_max              */
+    double S_min, S_max;
+} slut_nl_slab;
+
+SLUT_FN void slut_nl_slab_at(const slut_axis *a, double T, double g, slut_nl_slab *s) {
+    s->T = T;
+    s->TH_inf = slut_nl_H_scaled(g, SLUT_HUGE_VAL);
+    s->theta = atan2(slut_nl_sin_from_cos(g), g);
+    s->lo = log(slut_nl_depth_odds(T, g, a->min));
+    s->hi = log(slut_nl_depth_odds(T, g, a->max));
+    s->S_min = a->min;
+    s->S_max = a->max;
+}
+
+/* Unit coordinate x → S in the slab s; the ends exact. */
+SLUT_FN double slut_nl_slab_S(const slut_nl_slab *s, double x) {
+    if (x <= 0.0) return s->S_min;
+    if (x >= 1.0) return s->S_max;
+    return slut_nl_S_from_depth_odds_given(s->T, s->TH_inf, s->theta, exp(s->lo + x * (s->hi - s->lo)));
+}
+
 /* Unit coordinate x → S on the slab axis a at (T, g); the ends exact. */
 SLUT_FN double slut_nl_S_from_unit(const slut_axis *a, double T, double g, double x) {
     if (x <= 0.0) return a->min;
     if (x >= 1.0) return a->max;
-    double lo = log(slut_nl_depth_odds(T, g, a->min)), hi = log(slut_nl_depth_odds(T, g, a->max));
-    return slut_nl_S_from_depth_odds(T, g, exp(lo + x * (hi - lo)));
+    slut_nl_slab s;
+    slut_nl_slab_at(a, T, g, &s);
+    return slut_nl_slab_S(&s, x);
 }
 
 /* S of node i of a slab axis at (T, g): the q map for SLUT_WARP_NL_QODDS, else the axis's own
@@ -450,6 +576,18 @@ SLUT_FN double slut_nl_S_from_unit(const slut_axis *a, double T, double g, doubl
 SLUT_FN double slut_nl_S_node(const slut_axis *a, double T, double g, int i) {
     if (a->warp != SLUT_WARP_NL_QODDS) return slut_axis_node(a, i);
     return slut_nl_S_from_unit(a, T, g, (double)i / (double)(a->count - 1));
+}
+
+/* S_out[k] = slut_nl_S_node(a, T, g, first + k) for k < count (the same values), the shared
+ * part of the q map computed once. */
+SLUT_FN void slut_nl_S_nodes(const slut_axis *a, double T, double g, int first, int count, double *S_out) {
+    if (a->warp != SLUT_WARP_NL_QODDS) {
+        for (int k = 0; k < count; ++k) S_out[k] = slut_axis_node(a, first + k);
+        return;
+    }
+    slut_nl_slab s;
+    slut_nl_slab_at(a, T, g, &s);
+    for (int k = 0; k < count; ++k) S_out[k] = slut_nl_slab_S(&s, (double)(first + k) / (double)(a->count - 1));
 }
 
 /* ------------------------------------------------------------------ parameters from geometry */
@@ -607,6 +745,7 @@ SLUT_FN double slut_nl_E_thin(double r, double S) {
     if (!(r > 0.0) || S > SLUT_INFINITE_ABOVE) return 0.0;
     double x = (r > SLUT_INFINITE_ABOVE) ? S : S * ((1.0 + r) / r);
     if (x < SLUT_TINY) return 1.0;
+    if (x > 40.0) return 1.0 / x; /* e^{−x} < 5e-18: 1 − e^{−x} rounds to 1 (the same value, no expm1) */
     return -expm1(-x) / x;
 }
 
@@ -635,9 +774,14 @@ SLUT_FN double slut_nl_N_thin(double T, double g, double r, double S) {
  * encoding, exact by construction (E = B·e^{stored}). Measured: docs/NEARLIGHT.md.
  * B ≥ e^{−T} > 0 for T ≤ 700; B = 1 at T = 0. */
 /* SLUT_SHADER_BEGIN (the value base: also the GLSL/HLSL snippets') */
-SLUT_FN double slut_nl_E_base(double T, double r, double S) {
+/* B from its factors that depend on T alone, floor_T = e^{−T} and rise_T = 1 − e^{−T}
+ * (= −expm1(−T)): the table kernel computes them once per T node, not once per node. */
+SLUT_FN double slut_nl_E_base_from(double floor_T, double rise_T, double T, double r, double S) {
     double S_eff = (S > SLUT_INFINITE_ABOVE) ? T : S * (T / (S + T));
-    return exp(-T) - expm1(-T) * slut_nl_E_thin(r, S_eff);
+    return floor_T + rise_T * slut_nl_E_thin(r, S_eff);
+}
+SLUT_FN double slut_nl_E_base(double T, double r, double S) {
+    return slut_nl_E_base_from(exp(-T), -expm1(-T), T, r, S);
 }
 /* SLUT_SHADER_END */
 

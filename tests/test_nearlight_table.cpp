@@ -4,8 +4,10 @@
 // against the 30-digit mpmath references.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <gtest/gtest.h>
@@ -94,7 +96,83 @@ TEST(NearLightKernel, EveryNodeMatchesBoostReference) {
             worst = std::max(worst, err);
         }
         std::printf("%s: %zu nodes, max rel err vs Boost %.2e\n", t.kind.c_str(), t.node_count(), worst);
-        EXPECT_LE(t.accuracy.integration_max_rel, 1e-12);
+        // The default integration tolerance 1e-11 (kNearLightIntegrationTolerance) measures
+        // ~1e-11; 1e-10 is the bound for the tables.
+        EXPECT_LE(t.accuracy.integration_max_rel, 1e-10);
+    }
+}
+
+// The kernel and the header's C++ sweep (the runtime's exact fallback) at the same nodes, on
+// tables stretched to the hard corners: T from 1e-5 to 100, g down to −0.999999 (the ray
+// grazes the light), r from 0 through 1e-12 to 1e6, S from 1e-8 to 200; 20 r nodes (a full
+// and a partial lane group).
+//  - Agreement: the C++ slut_nl_E_sweep with the kernel's r group and S list (the same panel
+//    mesh), ≤ 1e-13 relative at every node: both run the same rules; only the builtins'
+//    rounding differs (PoCL's vector exp and log against libm's, ~1 ulp per node).
+//  - Accuracy: ≤ 1e-10 (the bound) at every node against an independent finer mesh
+//    (the C++ sweep at refine 2.5), and against the Boost reference where it claims 1e-15
+//    (T ≥ 1e-3).
+TEST(NearLightKernel, MatchesHostSweepAndReferenceAtHardCorners) {
+    for (bool finite : {false, true}) {
+        scatterlut::NearLightPlan plan = scatterlut::default_near_light_plan(finite);
+        plan.T_min = 1e-5;
+        plan.T_max = 100.0;
+        plan.g_min = -0.999999;
+        plan.r_max = 1e6;
+        plan.r_scale = 1e-12;
+        plan.S_min = 1e-8;
+        plan.S_max = 200.0;
+        plan.n_T = 7;
+        plan.n_g = 9;
+        plan.n_r = 20;
+        plan.n_S = 6;
+        const scatterlut::Table layout = scatterlut::make_nearlight_table_layout(plan);
+        const std::vector<double> values = scatterlut::integrate_nearlight_ln_E(device(), layout);
+        const double refine = slut_nl_refine_for_tolerance(plan.integration_tolerance);
+        const auto &ax = layout.axes;
+        const int n_S = finite ? ax[3].map.count : 1;
+        double worst_host = 0, worst_fine = 0, worst_boost = 0;
+        for (int iT = 0; iT < plan.n_T; ++iT) {
+            const double T = slut_axis_node(&ax[0].map, iT);
+            for (int ig = 0; ig < plan.n_g; ++ig) {
+                const double g = slut_axis_node(&ax[1].map, ig);
+                double S[SLUT_NL_MAX_SWEEP];
+                for (int i = 0; i < n_S; ++i) S[i] = finite ? slut_nl_S_node(&ax[3].map, T, g, i) : HUGE_VAL;
+                for (int ir0 = 0; ir0 < plan.n_r; ir0 += SLUT_NL_MAX_LANES) {
+                    const int lanes = std::min(SLUT_NL_MAX_LANES, plan.n_r - ir0);
+                    double r[SLUT_NL_MAX_LANES];
+                    for (int l = 0; l < lanes; ++l) r[l] = slut_axis_node(&ax[2].map, ir0 + l);
+                    std::vector<double> host(static_cast<size_t>(n_S * lanes)), fine(host.size());
+                    slut_nl_E_sweep(T, g, S, n_S, r, lanes, host.data(), refine);
+                    slut_nl_E_sweep(T, g, S, n_S, r, lanes, fine.data(), 2.5);
+                    for (int i = 0; i < n_S; ++i) {
+                        for (int l = 0; l < lanes; ++l) {
+                            const size_t node[4] = {static_cast<size_t>(iT), static_cast<size_t>(ig),
+                                                    static_cast<size_t>(ir0 + l), static_cast<size_t>(i)};
+                            const double base = finite ? slut_nl_E_base(T, r[l], S[i]) : 1.0;
+                            const double got = std::exp(values[layout.index(node)]) * base;
+                            const size_t k = static_cast<size_t>(i * lanes + l);
+                            const double e_host = slut_test::rel_err(got, host[k]);
+                            const double e_fine = slut_test::rel_err(got, fine[k]);
+                            ASSERT_LE(e_host, 1e-13) << "T=" << T << " g=" << g << " r=" << r[l] << " S=" << S[i];
+                            ASSERT_LE(e_fine, 1e-10) << "T=" << T << " g=" << g << " r=" << r[l] << " S=" << S[i];
+                            worst_host = std::max(worst_host, e_host);
+                            worst_fine = std::max(worst_fine, e_fine);
+                            if (T >= 1e-3 && S[i] > 0.0) {
+                                const double want =
+                                    static_cast<double>(slut_ref::nearlight_NHE(T, g, r[l], S[i]).E);
+                                const double e_boost = slut_test::rel_err(got, want);
+                                ASSERT_LE(e_boost, 1e-10)
+                                    << "T=" << T << " g=" << g << " r=" << r[l] << " S=" << S[i];
+                                worst_boost = std::max(worst_boost, e_boost);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        std::printf("%s corners: %zu nodes, max rel vs host sweep %.2e, vs refine 2.5 %.2e, vs Boost %.2e\n",
+                    layout.kind.c_str(), values.size(), worst_host, worst_fine, worst_boost);
     }
 }
 
@@ -175,7 +253,7 @@ TEST(NearLightTable, DefaultFiniteTableWithinOnePercent) {
     const scatterlut::Table &t = default_e4();
     EXPECT_LE(t.accuracy.sampling_max_rel, 1e-2);
     EXPECT_GT(t.accuracy.sampling_points, 15000u);
-    EXPECT_LE(t.accuracy.integration_max_rel, 1e-12);
+    EXPECT_LE(t.accuracy.integration_max_rel, 1e-10); // tolerance 1e-11: see EveryNodeMatchesBoostReference
     const scatterlut::NearLightTable table(t);
     const scatterlut::SamplingStats corners = scatterlut::measure_nearlight_corners(table, 20000, 3);
     std::printf("default E4: random max %.3e p99 %.3e; corners max %.3e p99 %.3e (%llu points)\n",

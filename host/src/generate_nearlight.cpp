@@ -75,7 +75,17 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
     cl::Buffer out(device.context(), CL_MEM_WRITE_ONLY, n * sizeof(double));
     int arg = 0;
     kernel.setArg(arg++, out);
-    for (size_t a = 0; a < 3; ++a) set_axis_args(kernel, &arg, layout.axes[a].map);
+    std::vector<cl::Buffer> node_buffers; // T, g, r: each axis's nodes (slut_axis_node)
+    node_buffers.reserve(3);
+    for (size_t a = 0; a < 3; ++a) {
+        const slut_axis &map = layout.axes[a].map;
+        std::vector<double> nodes(static_cast<size_t>(map.count));
+        for (int i = 0; i < map.count; ++i) nodes[static_cast<size_t>(i)] = slut_axis_node(&map, i);
+        node_buffers.emplace_back(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                  nodes.size() * sizeof(double), nodes.data());
+        kernel.setArg(arg++, node_buffers.back());
+        kernel.setArg(arg++, map.count);
+    }
     // A thick table has no S axis: the kernel reads one layer at S = +inf.
     const double inf = std::numeric_limits<double>::infinity();
     const slut_axis thick = {inf, inf, 0.0, SLUT_WARP_LINEAR, 1};
