@@ -224,6 +224,18 @@ SLUT_FN double slut_gs_series_u_min(double w) {
     return exp((log(2.0 * 479001600.0 / 1e-16) + 11.0 * log(sw)) / 12.0);
 }
 
+/* Short intervals of the table sweep (kernels/airlight_F.cl): a rule Σ_n W_n e^{−u y_n}
+ * with every node in [0, Δ] and u·Δ ≤ SLUT_GS_TAYLOR_X needs no exponential. With the
+ * Taylor polynomial of e^{−x} to K = SLUT_GS_TAYLOR_TERMS terms,
+ *   Σ_n W_n e^{−u y_n} = Σ_{k<K} m_k u^k + R,   m_k = ((−1)^k / k!) Σ_n W_n y_n^k,
+ *   |R| ≤ Σ_n W_n (u y_n)^K / K! ≤ (X^K / K!) Σ_n W_n ≤ e^X (X^K / K!) Σ_n W_n e^{−u y_n}
+ * (weights positive), so the relative error is ≤ e^{0.5}·0.5^16/16! = 1.2e-18 at X = ½,
+ * K = 16: the moments m_k (host, once per interval) replace the rule for every such row.
+ * Horner in u: |m_k u^k| ≤ X^k/k! · Σ W, so the sum of the terms' magnitudes is at most
+ * e^{2X} = e times the result, and rounding stays at a few ulp. */
+#define SLUT_GS_TAYLOR_TERMS 16
+#define SLUT_GS_TAYLOR_X 0.5
+
 /* ------------------------------------------------------------- airlight geometry */
 
 /* Everything the radiance needs from (σ_s, σ_a, I0, D, γ, s), computed from sin γ and

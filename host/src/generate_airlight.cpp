@@ -156,14 +156,37 @@ int panel_order(double a, double h, const IntervalBounds &b) {
     return 0; // no order suffices: the panel is too long
 }
 
+// The nodes of one interval's rule for rows with u ≤ u_cap: y ∈ [0, end] with panels
+// [0, h0], [h0, 2h0], [2h0, 4h0], … (the last one cut at the end), h0 = min(14/u_cap, |τ + i|)
+// (16-point Gauss–Legendre integrates 14 e-folds of e^{−u y} to ~1e-17; doubling panels
+// then see u·a e-folds behind them and as many across, a product that stays below 1e-18
+// for every u; the first panel keeps the poles at y = −τ ± i a panel length away), each
+// panel at the lowest order panel_order allows. Weights carry the Lorentzian
+// 1/(1 + (τ + y)²), so the kernel forms Σ W e^{−u y}. Appends to y and weight.
+void append_interval_rule(double tau, double end, double u_cap, double panel_eps, std::vector<double> &y,
+                          std::vector<double> &weight) {
+    const double pole_distance = std::sqrt(tau * tau + 1.0); // |τ + i|: the poles at y = −τ ± i
+    const double h0 = std::min(14.0 / u_cap, pole_distance);
+    const IntervalBounds bounds = interval_bounds(tau, std::min(end, pole_distance), u_cap, panel_eps);
+    for (double a = 0; a < end;) {
+        double h = (a == 0) ? h0 : a;
+        if (a + h >= end || end - (a + h) < 0.25 * h) h = end - a; // no sliver at the end
+        int order = panel_order(a, h, bounds);
+        while (order == 0) order = panel_order(a, h *= 0.5, bounds); // near a pole: shorter
+        const GaussLegendre &rule = gauss_legendre_cached(order);
+        for (size_t k = 0; k < rule.x.size(); ++k) {
+            const double yk = a + 0.5 * h * (1.0 + rule.x[k]), ty = tau + yk;
+            y.push_back(yk);
+            weight.push_back(0.5 * h * rule.w[k] / (1.0 + ty * ty));
+        }
+        a = (h == end - a) ? end : a + h; // the last panel ends exactly at the end
+    }
+}
+
 // The nodes of all intervals of the sweep (see kernels/airlight_F.cl) for rows with
-// u ∈ [u_lo, u_cap]. Interval j covers y ∈ [0, Δ_j] (Δ_0 = ∞), cut where u_lo·y = 40 (the
-// kernel drops the same terms): panels [0, h0], [h0, 2h0], [2h0, 4h0], … (the last one cut
-// at the end), h0 = min(14/u_cap, |τ_j + i|) (16-point Gauss–Legendre integrates 14 e-folds
-// of e^{−u y} to ~1e-17; doubling panels then see u·a e-folds behind them and as many
-// across, a product that stays below 1e-18 for every u; the first panel keeps the poles
-// at y = −τ ± i a panel length away), each panel at the lowest order panel_order allows.
-// Weights carry the Lorentzian 1/(1 + (τ_j + y)²), so the kernel forms Σ W e^{−u y}.
+// u ∈ [u_lo, u_cap]: interval j covers y ∈ [0, Δ_j] (Δ_0 = ∞), cut where u_lo·y = 40 (the
+// kernel drops the same terms). No nodes where the set's rows take the large-u series or
+// the Taylor form (u_cap·Δ_j ≤ SLUT_GS_TAYLOR_X: every row of the set is short there).
 struct RuleSet {
     std::vector<double> y, weight;
     std::vector<int> begin; // n_w + 1 offsets into y and weight
@@ -175,32 +198,38 @@ RuleSet sweep_rule_set(const std::vector<double> &tau, const std::vector<double>
                        const std::vector<double> &series_u_min, double u_lo, double u_cap, double panel_eps) {
     RuleSet s;
     const int n_w = static_cast<int>(tau.size());
-    const double h0_decay = 14.0 / u_cap, y_cut = kDroppedEfolds / u_lo;
+    const double y_cut = kDroppedEfolds / u_lo;
     for (int j = 0; j < n_w; ++j) {
-        const double t = tau[static_cast<size_t>(j)];
+        const size_t k = static_cast<size_t>(j);
         s.begin.push_back(static_cast<int>(s.y.size()));
-        if (u_lo >= series_u_min[static_cast<size_t>(j)]) continue; // every item of the set uses the series
-        const double end = (j > 0) ? std::min(delta[static_cast<size_t>(j)], y_cut) : y_cut;
-        const double pole_distance = std::sqrt(t * t + 1.0); // |τ + i|: the poles at y = −τ ± i
-        const double ell = std::min(end, pole_distance);
-        const double h0 = std::min(h0_decay, pole_distance);
-        const IntervalBounds bounds = interval_bounds(t, ell, u_cap, panel_eps);
-        for (double a = 0; a < end;) {
-            double h = (a == 0) ? h0 : a;
-            if (a + h >= end || end - (a + h) < 0.25 * h) h = end - a; // no sliver at the end
-            int order = panel_order(a, h, bounds);
-            while (order == 0) order = panel_order(a, h *= 0.5, bounds); // near a pole: shorter
-            const GaussLegendre &rule = gauss_legendre_cached(order);
-            for (size_t k = 0; k < rule.x.size(); ++k) {
-                const double y = a + 0.5 * h * (1.0 + rule.x[k]), ty = t + y;
-                s.y.push_back(y);
-                s.weight.push_back(0.5 * h * rule.w[k] / (1.0 + ty * ty));
-            }
-            a = (h == end - a) ? end : a + h; // the last panel ends exactly at the end
-        }
+        if (u_lo >= series_u_min[k]) continue; // every item of the set uses the series
+        if (j > 0 && u_cap * delta[k] <= SLUT_GS_TAYLOR_X) continue; // every item uses the moments
+        append_interval_rule(tau[k], (j > 0) ? std::min(delta[k], y_cut) : y_cut, u_cap, panel_eps, s.y, s.weight);
     }
     s.begin.push_back(static_cast<int>(s.y.size()));
     return s;
+}
+
+// The Taylor moments m_jk = ((−1)^k/k!) Σ_n W_n y_n^k, k < SLUT_GS_TAYLOR_TERMS, of each
+// interval j ≥ 1 (slut_airlight.h), from its rule for every u ≤ SLUT_GS_TAYLOR_X/Δ_j (the
+// rows that use them); zero for j = 0, which has no end.
+std::vector<double> taylor_moments(const std::vector<double> &tau, const std::vector<double> &delta, double panel_eps) {
+    constexpr size_t K = SLUT_GS_TAYLOR_TERMS;
+    std::vector<double> m(tau.size() * K, 0.0), y, weight;
+    for (size_t j = 1; j < tau.size(); ++j) {
+        y.clear();
+        weight.clear();
+        append_interval_rule(tau[j], delta[j], SLUT_GS_TAYLOR_X / delta[j], panel_eps, y, weight);
+        double *mj = &m[j * K];
+        for (size_t n = 0; n < y.size(); ++n) {
+            double term = weight[n]; // W_n (−y_n)^k / k!
+            for (size_t k = 0; k < K; ++k) {
+                mj[k] += term;
+                term *= -y[n] / static_cast<double>(k + 1);
+            }
+        }
+    }
+    return m;
 }
 
 template <class T> cl::Buffer input_buffer(Device &device, const std::vector<T> &v) {
@@ -235,11 +264,14 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
         tau[k] = std::cos(w_nodes[k]) / std::sin(w_nodes[k]); // as slut_w_gs_quadrature forms it
         if (j > 0) delta[k] = tau[k - 1] - tau[k];
     }
-    // Where the large-u series holds (slut_gs_series_u_min) it replaces the rule.
-    std::vector<double> series_u_min(w_nodes.size()), series_coef(w_nodes.size() * SLUT_GS_SERIES_TERMS);
+    // Where the large-u series holds (slut_gs_series_u_min) it replaces the rule; its
+    // coefficients only where a work-item uses it (the kernel tests lane 0's u).
+    std::vector<double> series_u_min(w_nodes.size()), series_coef(w_nodes.size() * SLUT_GS_SERIES_TERMS, 0.0);
+    double u_lo_max = 0; // the largest lane-0 u of any work-item
+    for (int k = 0; k < items; ++k) u_lo_max = std::max(u_lo_max, u_rows[static_cast<size_t>(kLanes * k)]);
     for (size_t k = 0; k < w_nodes.size(); ++k) {
         series_u_min[k] = slut_gs_series_u_min(w_nodes[k]);
-        slut_gs_large_u_coefficients(w_nodes[k], &series_coef[k * SLUT_GS_SERIES_TERMS]);
+        if (u_lo_max >= series_u_min[k]) slut_gs_large_u_coefficients(w_nodes[k], &series_coef[k * SLUT_GS_SERIES_TERMS]);
     }
 
     // Rule sets for rows u ≤ cap_c = u_max/4^c: a row of small u needs no panels for a
@@ -267,11 +299,12 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
         double &lo = set_u_lo[static_cast<size_t>(item_set[static_cast<size_t>(k)])];
         lo = std::min(lo, std::max(u_rows[static_cast<size_t>(kLanes * k)], u_min_positive));
     }
+    const std::vector<double> moments = taylor_moments(tau, delta, panel_eps);
+    // One thread: ~0.2 ms at 257², ~0.3 ms at 1025²; threads started per call made it
+    // slower and erratic on a loaded 2-core machine (0.2–3 ms).
     std::vector<RuleSet> sets(set_cap.size());
-    parallel_for(static_cast<int>(sets.size()), [&](int c) {
-        const size_t k = static_cast<size_t>(c);
+    for (size_t k = 0; k < sets.size(); ++k)
         if (set_u_lo[k] < HUGE_VAL) sets[k] = sweep_rule_set(tau, delta, series_u_min, set_u_lo[k], set_cap[k], panel_eps);
-    });
     std::vector<double> node_y, node_weight;
     std::vector<int> node_begin;
     for (RuleSet &set : sets) {
@@ -291,12 +324,13 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
                      b_delta = input_buffer(device, delta), b_set = input_buffer(device, item_set),
                      b_begin = input_buffer(device, node_begin), b_y = input_buffer(device, node_y),
                      b_weight = input_buffer(device, node_weight), b_series_u = input_buffer(device, series_u_min),
-                     b_series_c = input_buffer(device, series_coef);
+                     b_series_c = input_buffer(device, series_coef),
+                     b_moments = input_buffer(device, moments);
     int arg = 0;
     kernel.setArg(arg++, out);
     kernel.setArg(arg++, au.count);
     kernel.setArg(arg++, aw.count);
-    for (const cl::Buffer *b : {&b_u, &b_w, &b_delta, &b_set, &b_begin, &b_y, &b_weight, &b_series_u, &b_series_c})
+    for (const cl::Buffer *b : {&b_u, &b_w, &b_delta, &b_set, &b_begin, &b_y, &b_weight, &b_series_u, &b_series_c, &b_moments})
         kernel.setArg(arg++, *b);
     // Few, heavy work-items: a small local size spreads them over the cores (POCL-NOTES.md).
     device.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(static_cast<size_t>(items)), cl::NDRange(1));
