@@ -342,7 +342,9 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
         kernel.setArg(arg++, *b);
     // Few, heavy work-items: a small local size spreads them over the cores (POCL-NOTES.md).
     device.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(static_cast<size_t>(items)), cl::NDRange(1));
-    void *mapped = device.queue().enqueueMapBuffer(out, CL_TRUE, CL_MAP_READ, 0, values.size() * sizeof(double));
+    // Map (the values are in `values` once it completes) and unmap queued behind the kernel,
+    // one wait for all three: each blocking call is a round trip to PoCL's worker threads.
+    void *mapped = device.queue().enqueueMapBuffer(out, CL_FALSE, CL_MAP_READ, 0, values.size() * sizeof(double));
     device.queue().enqueueUnmapMemObject(out, mapped);
     device.queue().finish();
     device.kernels_ran("airlight_F.cl");
