@@ -225,14 +225,16 @@ SLUT_FN double slut_gs_series_u_min(double w) {
 }
 
 /* Short intervals of the table sweep (kernels/airlight_F.cl): a rule Σ_n W_n e^{−u y_n}
- * with every node in [0, Δ] and u·Δ ≤ SLUT_GS_TAYLOR_X needs no exponential. With the
- * Taylor polynomial of e^{−x} to K = SLUT_GS_TAYLOR_TERMS terms,
- *   Σ_n W_n e^{−u y_n} = Σ_{k<K} m_k u^k + R,   m_k = ((−1)^k / k!) Σ_n W_n y_n^k,
- *   |R| ≤ Σ_n W_n (u y_n)^K / K! ≤ (X^K / K!) Σ_n W_n ≤ e^X (X^K / K!) Σ_n W_n e^{−u y_n}
- * (weights positive), so the relative error is ≤ e^{0.5}·0.5^16/16! = 1.2e-18 at X = ½,
- * K = 16: the moments m_k (host, once per interval) replace the rule for every such row.
- * Horner in u: |m_k u^k| ≤ X^k/k! · Σ W, so the sum of the terms' magnitudes is at most
- * e^{2X} = e times the result, and rounding stays at a few ulp. */
+ * with every node in [0, Δ] and u·Δ ≤ 2X (X = SLUT_GS_TAYLOR_X) needs one exponential,
+ * not one per node. About the midpoint c = Δ/2, with x_n = u (y_n − c), |x_n| ≤ X, and
+ * the Taylor polynomial of e^{−x} to K = SLUT_GS_TAYLOR_TERMS terms,
+ *   Σ_n W_n e^{−u y_n} = e^{−u c} (Σ_{k<K} m_k u^k + R),  m_k = ((−1)^k / k!) Σ_n W_n (y_n − c)^k,
+ *   |R| ≤ Σ_n W_n e^{|x_n|} |x_n|^K / K! ≤ e^{2X} (X^K / K!) Σ_n W_n e^{−x_n}
+ * (Lagrange remainder; weights positive), so the relative error is
+ * ≤ e·0.5^16/16! = 2.0e-18 at X = ½, K = 16. The host forms the moments once per interval;
+ * the kernel needs e^{−u c} for the factor and its square e^{−u Δ} for the recurrence.
+ * Horner in u: Σ_k |m_k| u^k ≤ e^X Σ W while the sum is ≥ e^{−X} Σ W, so the terms'
+ * magnitudes add up to at most e times the result, and rounding stays at a few ulp. */
 #define SLUT_GS_TAYLOR_TERMS 16
 #define SLUT_GS_TAYLOR_X 0.5
 

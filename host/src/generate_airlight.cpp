@@ -189,7 +189,7 @@ void append_interval_rule(double tau, double end, double u_cap, double panel_eps
 // The nodes of all intervals of the sweep (see kernels/airlight_F.cl) for rows with
 // u ∈ [u_lo, u_cap]: interval j covers y ∈ [0, Δ_j] (Δ_0 = ∞), cut where u_lo·y = 40 (the
 // kernel drops the same terms). No nodes where the set's rows take the large-u series or
-// the Taylor form (u_cap·Δ_j ≤ SLUT_GS_TAYLOR_X: every row of the set is short there).
+// the Taylor form (u_cap·Δ_j ≤ 2·SLUT_GS_TAYLOR_X: every row of the set is short there).
 struct RuleSet {
     std::vector<double> y, weight;
     std::vector<int> begin; // n_w + 1 offsets into y and weight
@@ -206,16 +206,16 @@ RuleSet sweep_rule_set(const std::vector<double> &tau, const std::vector<double>
         const size_t k = static_cast<size_t>(j);
         s.begin.push_back(static_cast<int>(s.y.size()));
         if (u_lo >= series_u_min[k]) continue; // every item of the set uses the series
-        if (j > 0 && u_cap * delta[k] <= SLUT_GS_TAYLOR_X) continue; // every item uses the moments
+        if (j > 0 && u_cap * delta[k] <= 2.0 * SLUT_GS_TAYLOR_X) continue; // every item uses the moments
         append_interval_rule(tau[k], (j > 0) ? std::min(delta[k], y_cut) : y_cut, u_cap, panel_eps, s.y, s.weight);
     }
     s.begin.push_back(static_cast<int>(s.y.size()));
     return s;
 }
 
-// The Taylor moments m_jk = ((−1)^k/k!) Σ_n W_n y_n^k, k < SLUT_GS_TAYLOR_TERMS, of each
-// interval j ≥ 1 (slut_airlight.h), from its rule for every u ≤ SLUT_GS_TAYLOR_X/Δ_j (the
-// rows that use them); zero for j = 0, which has no end.
+// The Taylor moments m_jk = ((−1)^k/k!) Σ_n W_n (y_n − Δ_j/2)^k, k < SLUT_GS_TAYLOR_TERMS,
+// of each interval j ≥ 1 (slut_airlight.h), from its rule for every u ≤ 2·SLUT_GS_TAYLOR_X/Δ_j
+// (the rows that use them); zero for j = 0, which has no end.
 std::vector<double> taylor_moments(const std::vector<double> &tau, const std::vector<double> &delta, double panel_eps) {
     constexpr size_t K = SLUT_GS_TAYLOR_TERMS;
     static const std::array<double, K> kInverse = [] { // 1/(k + 1)
@@ -227,13 +227,15 @@ std::vector<double> taylor_moments(const std::vector<double> &tau, const std::ve
     for (size_t j = 1; j < tau.size(); ++j) {
         y.clear();
         weight.clear();
-        append_interval_rule(tau[j], delta[j], SLUT_GS_TAYLOR_X / delta[j], panel_eps, y, weight);
+        append_interval_rule(tau[j], delta[j], 2.0 * SLUT_GS_TAYLOR_X / delta[j], panel_eps, y, weight);
         double *mj = &m[j * K];
+        const double centre = 0.5 * delta[j];
         for (size_t n = 0; n < y.size(); ++n) {
-            double term = weight[n]; // W_n (−y_n)^k / k!
+            const double minus_offset = centre - y[n]; // −(y_n − Δ_j/2)
+            double term = weight[n];                   // W_n (−(y_n − Δ_j/2))^k / k!
             for (size_t k = 0; k < K; ++k) {
                 mj[k] += term;
-                term *= -y[n] * kInverse[k];
+                term *= minus_offset * kInverse[k];
             }
         }
     }
