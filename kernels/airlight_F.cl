@@ -22,10 +22,14 @@
  * Where the layer at y = 0 is thin (u ≥ slut_gs_series_u_min(w_j) for lane 0, hence all
  * lanes) the whole S_j is the large-u series Σ_k c_k(w_j)/u^{k+1} instead (slut_airlight.h:
  * ≤ 1e-16 relative there; the host passes the coefficients), and the sweep continues from it.
+ * Where the interval is short for every lane (u_7·Δ_j ≤ 2·SLUT_GS_TAYLOR_X, lane 7 the
+ * largest u) the rule is its Taylor form about Δ_j/2, e^{−u Δ_j/2} Σ_k m_jk u^k
+ * (slut_airlight.h: ≤ 2e-18 relative; the host passes the moments of interval j's rule):
+ * one exp for the interval, whose square is the recurrence's e^{−u Δ_j}, and 15 fma.
  * Output: out[j·n_u + i] = ln G̃(u_i, w_j) (axis 0 fastest, the file layout); u = 0 is
  * exactly ln 1 = 0.
  */
-#include "slut_airlight.h" /* SLUT_GS_SERIES_TERMS */
+#include "slut_airlight.h" /* SLUT_GS_SERIES_TERMS, SLUT_GS_TAYLOR_TERMS, SLUT_GS_TAYLOR_X */
 
 __kernel void airlight_ln_gs_sweep(__global double *out, int n_u, int n_w,
                                    __global const double *u_rows,     /* n_u padded to 8k, ascending */
@@ -36,11 +40,12 @@ __kernel void airlight_ln_gs_sweep(__global double *out, int n_u, int n_w,
                                    __global const double *node_y,     /* y_jn, ascending per j     */
                                    __global const double *node_weight, /* W_jn                      */
                                    __global const double *series_u_min, /* n_w: the series holds above */
-                                   __global const double *series_coef  /* n_w × SLUT_GS_SERIES_TERMS */) {
+                                   __global const double *series_coef, /* n_w × SLUT_GS_SERIES_TERMS */
+                                   __global const double *taylor_moment /* n_w × SLUT_GS_TAYLOR_TERMS: m_jk about Δ_j/2 */) {
     int item = get_global_id(0);
     if (8 * item >= n_u) return;
     double8 u = vload8(item, u_rows);
-    double u_lo = u.s0;
+    double u_lo = u.s0, u_hi = u.s7;
     __global const int *begin = node_begin + (size_t)item_set[item] * (size_t)(n_w + 1);
     double8 sum = (double8)(0.0);
     double8 inv_u = 1.0 / u;
@@ -50,6 +55,12 @@ __kernel void airlight_ln_gs_sweep(__global double *out, int n_u, int n_w,
             double8 s = (double8)(c[SLUT_GS_SERIES_TERMS - 1]);
             for (int k = SLUT_GS_SERIES_TERMS - 2; k >= 0; --k) s = fma(s, inv_u, (double8)(c[k]));
             sum = s * inv_u;
+        } else if (j > 0 && u_hi * delta[j] <= 2.0 * SLUT_GS_TAYLOR_X) { /* the recurrence, short interval */
+            __global const double *m = taylor_moment + (size_t)j * SLUT_GS_TAYLOR_TERMS;
+            double8 s = (double8)(m[SLUT_GS_TAYLOR_TERMS - 1]);
+            for (int k = SLUT_GS_TAYLOR_TERMS - 2; k >= 0; --k) s = fma(s, u, (double8)(m[k]));
+            double8 decay_half = exp(-u * (0.5 * delta[j])); /* e^{−u Δ_j/2} */
+            sum = decay_half * fma(sum, decay_half, s);
         } else { /* the recurrence */
             if (j > 0) sum *= exp(-u * delta[j]);
             int end = begin[j + 1];

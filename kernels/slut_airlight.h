@@ -188,13 +188,21 @@ SLUT_FN double slut_gs_small_w(double w, double a) {
  * an asymptotic series whose terms shrink by ≤ (k+1)/u: summed to its smallest term,
  * relative error ≲ 8!/u^8 ≈ 1e-10 at u = 48. Uniform in w. */
 #define SLUT_GS_SERIES_TERMS 12
-/* c_k(w) = (−1)^k k! (sin w)^{k+1} sin((k+1) w), k < SLUT_GS_SERIES_TERMS: w·G̃ ~ Σ_k c_k(w)/u^{k+1}. */
+/* c_k(w) = (−1)^k k! (sin w)^{k+1} sin((k+1) w), k < SLUT_GS_SERIES_TERMS: w·G̃ ~ Σ_k c_k(w)/u^{k+1}.
+ * sin((k+1) w) by the recurrence sin((k+1)w) = 2 cos w · sin(kw) − sin((k−1)w) (one sin and
+ * one cos instead of twelve sines; the table generator calls this once per w node). Its
+ * rounding error grows like the Chebyshev polynomials U_k(cos w), ≤ k²/6 ≈ 24 ulp of the
+ * largest |sin(jw)| at k = 12: ~5e-15 of a coefficient whose term is a small correction. */
 SLUT_FN void slut_gs_large_u_coefficients(double w, double *c) {
-    double sw = sin(w), power = sw; /* k!·(sin w)^{k+1} */
+    double sw = sin(w), two_cos = 2.0 * cos(w), power = sw; /* k!·(sin w)^{k+1} */
+    double sin_k = 0.0, sin_k1 = sw;                             /* sin(k w), sin((k + 1) w) */
     for (int k = 0; k < SLUT_GS_SERIES_TERMS; ++k) {
-        double term = power * sin((double)(k + 1) * w);
+        double term = power * sin_k1;
         c[k] = (k & 1) ? -term : term;
         power *= sw * (double)(k + 1);
+        double next = two_cos * sin_k1 - sin_k;
+        sin_k = sin_k1;
+        sin_k1 = next;
     }
 }
 
@@ -223,6 +231,20 @@ SLUT_FN double slut_gs_series_u_min(double w) {
     /* (2·12!·sin^11 w / 1e-16)^{1/12}, 12! = 479001600 */
     return exp((log(2.0 * 479001600.0 / 1e-16) + 11.0 * log(sw)) / 12.0);
 }
+
+/* Short intervals of the table sweep (kernels/airlight_F.cl): a rule Σ_n W_n e^{−u y_n}
+ * with every node in [0, Δ] and u·Δ ≤ 2X (X = SLUT_GS_TAYLOR_X) needs one exponential,
+ * not one per node. About the midpoint c = Δ/2, with x_n = u (y_n − c), |x_n| ≤ X, and
+ * the Taylor polynomial of e^{−x} to K = SLUT_GS_TAYLOR_TERMS terms,
+ *   Σ_n W_n e^{−u y_n} = e^{−u c} (Σ_{k<K} m_k u^k + R),  m_k = ((−1)^k / k!) Σ_n W_n (y_n − c)^k,
+ *   |R| ≤ Σ_n W_n e^{|x_n|} |x_n|^K / K! ≤ e^{2X} (X^K / K!) Σ_n W_n e^{−x_n}
+ * (Lagrange remainder; weights positive), so the relative error is
+ * ≤ e·0.5^16/16! = 2.0e-18 at X = ½, K = 16. The host forms the moments once per interval;
+ * the kernel needs e^{−u c} for the factor and its square e^{−u Δ} for the recurrence.
+ * Horner in u: Σ_k |m_k| u^k ≤ e^X Σ W while the sum is ≥ e^{−X} Σ W, so the terms'
+ * magnitudes add up to at most e times the result, and rounding stays at a few ulp. */
+#define SLUT_GS_TAYLOR_TERMS 16
+#define SLUT_GS_TAYLOR_X 0.5
 
 /* ------------------------------------------------------------- airlight geometry */
 

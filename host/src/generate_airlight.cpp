@@ -1,6 +1,7 @@
 #include "generate_airlight.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <chrono>
@@ -114,12 +115,13 @@ constexpr double kPanelShareOfTolerance = 1e-4;
 
 // Everything panel_order needs that does not change along one interval.
 struct IntervalBounds {
-    double tau, log_ell, log_inv_ell, u_split, log_u_split, u_max, log_u_max, log_eps;
+    double tau, log_ell, log_inv_ell, u_split, log_u_split, u_max, log_u_max, eps, log_eps;
 };
 
 IntervalBounds interval_bounds(double tau, double ell, double u_max, double panel_eps) {
     const double u_split = std::min(1.0 / ell, u_max);
-    return {tau, std::log(ell), -std::log(ell), u_split, std::log(u_split), u_max, std::log(u_max), std::log(panel_eps)};
+    return {tau,           std::log(ell), -std::log(ell), u_split, std::log(u_split), u_max, std::log(u_max),
+            panel_eps, std::log(panel_eps)};
 }
 
 int panel_order(double a, double h, const IntervalBounds &b) {
@@ -128,42 +130,66 @@ int panel_order(double a, double h, const IntervalBounds &b) {
         for (size_t k = 1; k < v.size(); ++k) v[k] = std::log(static_cast<double>(k));
         return v;
     }();
-    const double log_eps = b.log_eps;
     // Pole at y = −τ + i: with the foci at the panel ends, the ellipse through it has
-    // ρ = α + √(α² − 1), α = (sum of the distances to the ends)/h.
+    // ρ = α + √(α² − 1), α = (sum of the distances to the ends)/h. Order m holds it to
+    // eps when ρ^{2m} ≥ 64/(15(ρ² − 1) eps): powers of ρ² instead of logarithms (this
+    // runs ~10³ times per table).
     const double alpha = (std::sqrt((b.tau + a) * (b.tau + a) + 1.0) + std::sqrt((b.tau + a + h) * (b.tau + a + h) + 1.0)) / h;
-    const double rho = alpha + std::sqrt(alpha * alpha - 1.0);
-    const double log_rho = std::log(rho), log_pole_pref = std::log(64.0 / (15.0 * (rho * rho - 1.0)));
-    const int m_pole = static_cast<int>(std::ceil((log_pole_pref - log_eps) / (2.0 * log_rho)));
-    const double log_h = std::log(h), log_a = a > 0 ? std::log(a) : 0.0;
-    for (int m = std::max(2, m_pole); m <= kMaxOrder; ++m) {
+    const double rho = alpha + std::sqrt(alpha * alpha - 1.0), rho2 = rho * rho;
+    const double pole_needs = 64.0 / (15.0 * (rho2 - 1.0) * b.eps);
+    double rho_2m = rho2 * rho2; // m = 2
+    const double log_h = std::log(h), log_a = a > 0 ? (a == h ? log_h : std::log(a)) : 0.0;
+    for (int m = 2; m <= kMaxOrder; ++m, rho_2m *= rho2) {
+        if (rho_2m < pole_needs) continue;
         // max over u of u^{2m} max(u, 1/ℓ) e^{−ua}: two monotone pieces, each at its
-        // stationary point (2m/a resp. (2m + 1)/a) clamped to its range.
+        // stationary point (2m/a resp. u* = (2m + 1)/a) clamped to its range.
         double log_worst;
-        if (a > 0 && 2.0 * m / a < b.u_split) log_worst = 2.0 * m * (log_int[2 * m] - log_a) + b.log_inv_ell - 2.0 * m;
+        if (a > 0 && 2.0 * m < b.u_split * a) log_worst = 2.0 * m * (log_int[2 * m] - log_a) + b.log_inv_ell - 2.0 * m;
         else log_worst = 2.0 * m * b.log_u_split + b.log_inv_ell - b.u_split * a;
         if (b.u_split < b.u_max) {
-            const double u_star = a > 0 ? (2.0 * m + 1) / a : HUGE_VAL;
             double other;
-            if (u_star >= b.u_max) other = (2.0 * m + 1) * b.log_u_max - b.u_max * a;
-            else if (u_star <= b.u_split) other = (2.0 * m + 1) * b.log_u_split - b.u_split * a;
+            if (2.0 * m + 1 >= b.u_max * a) other = (2.0 * m + 1) * b.log_u_max - b.u_max * a; // u* ≥ u_max
+            else if (2.0 * m + 1 <= b.u_split * a) other = (2.0 * m + 1) * b.log_u_split - b.u_split * a;
             else other = (2.0 * m + 1) * (log_int[2 * m + 1] - log_a) - (2.0 * m + 1);
             log_worst = std::max(log_worst, other);
         }
         const double log_err = log_gl_error_constant(m) + (2.0 * m + 1.0) * log_h + log_worst - std::log(0.63);
-        if (log_err <= log_eps) return m;
+        if (log_err <= b.log_eps) return m;
     }
     return 0; // no order suffices: the panel is too long
 }
 
+// The nodes of one interval's rule for rows with u ≤ u_cap: y ∈ [0, end] with panels
+// [0, h0], [h0, 2h0], [2h0, 4h0], … (the last one cut at the end), h0 = min(14/u_cap, |τ + i|)
+// (16-point Gauss–Legendre integrates 14 e-folds of e^{−u y} to ~1e-17; doubling panels
+// then see u·a e-folds behind them and as many across, a product that stays below 1e-18
+// for every u; the first panel keeps the poles at y = −τ ± i a panel length away), each
+// panel at the lowest order panel_order allows. Weights carry the Lorentzian
+// 1/(1 + (τ + y)²), so the kernel forms Σ W e^{−u y}. Appends to y and weight.
+void append_interval_rule(double tau, double end, double u_cap, double panel_eps, std::vector<double> &y,
+                          std::vector<double> &weight) {
+    const double pole_distance = std::sqrt(tau * tau + 1.0); // |τ + i|: the poles at y = −τ ± i
+    const double h0 = std::min(14.0 / u_cap, pole_distance);
+    const IntervalBounds bounds = interval_bounds(tau, std::min(end, pole_distance), u_cap, panel_eps);
+    for (double a = 0; a < end;) {
+        double h = (a == 0) ? h0 : a;
+        if (a + h >= end || end - (a + h) < 0.25 * h) h = end - a; // no sliver at the end
+        int order = panel_order(a, h, bounds);
+        while (order == 0) order = panel_order(a, h *= 0.5, bounds); // near a pole: shorter
+        const GaussLegendre &rule = gauss_legendre_cached(order);
+        for (size_t k = 0; k < rule.x.size(); ++k) {
+            const double yk = a + 0.5 * h * (1.0 + rule.x[k]), ty = tau + yk;
+            y.push_back(yk);
+            weight.push_back(0.5 * h * rule.w[k] / (1.0 + ty * ty));
+        }
+        a = (h == end - a) ? end : a + h; // the last panel ends exactly at the end
+    }
+}
+
 // The nodes of all intervals of the sweep (see kernels/airlight_F.cl) for rows with
-// u ∈ [u_lo, u_cap]. Interval j covers y ∈ [0, Δ_j] (Δ_0 = ∞), cut where u_lo·y = 40 (the
-// kernel drops the same terms): panels [0, h0], [h0, 2h0], [2h0, 4h0], … (the last one cut
-// at the end), h0 = min(14/u_cap, |τ_j + i|) (16-point Gauss–Legendre integrates 14 e-folds
-// of e^{−u y} to ~1e-17; doubling panels then see u·a e-folds behind them and as many
-// across, a product that stays below 1e-18 for every u; the first panel keeps the poles
-// at y = −τ ± i a panel length away), each panel at the lowest order panel_order allows.
-// Weights carry the Lorentzian 1/(1 + (τ_j + y)²), so the kernel forms Σ W e^{−u y}.
+// u ∈ [u_lo, u_cap]: interval j covers y ∈ [0, Δ_j] (Δ_0 = ∞), cut where u_lo·y = 40 (the
+// kernel drops the same terms). No nodes where the set's rows take the large-u series or
+// the Taylor form (u_cap·Δ_j ≤ 2·SLUT_GS_TAYLOR_X: every row of the set is short there).
 struct RuleSet {
     std::vector<double> y, weight;
     std::vector<int> begin; // n_w + 1 offsets into y and weight
@@ -175,32 +201,45 @@ RuleSet sweep_rule_set(const std::vector<double> &tau, const std::vector<double>
                        const std::vector<double> &series_u_min, double u_lo, double u_cap, double panel_eps) {
     RuleSet s;
     const int n_w = static_cast<int>(tau.size());
-    const double h0_decay = 14.0 / u_cap, y_cut = kDroppedEfolds / u_lo;
+    const double y_cut = kDroppedEfolds / u_lo;
     for (int j = 0; j < n_w; ++j) {
-        const double t = tau[static_cast<size_t>(j)];
+        const size_t k = static_cast<size_t>(j);
         s.begin.push_back(static_cast<int>(s.y.size()));
-        if (u_lo >= series_u_min[static_cast<size_t>(j)]) continue; // every item of the set uses the series
-        const double end = (j > 0) ? std::min(delta[static_cast<size_t>(j)], y_cut) : y_cut;
-        const double pole_distance = std::sqrt(t * t + 1.0); // |τ + i|: the poles at y = −τ ± i
-        const double ell = std::min(end, pole_distance);
-        const double h0 = std::min(h0_decay, pole_distance);
-        const IntervalBounds bounds = interval_bounds(t, ell, u_cap, panel_eps);
-        for (double a = 0; a < end;) {
-            double h = (a == 0) ? h0 : a;
-            if (a + h >= end || end - (a + h) < 0.25 * h) h = end - a; // no sliver at the end
-            int order = panel_order(a, h, bounds);
-            while (order == 0) order = panel_order(a, h *= 0.5, bounds); // near a pole: shorter
-            const GaussLegendre &rule = gauss_legendre_cached(order);
-            for (size_t k = 0; k < rule.x.size(); ++k) {
-                const double y = a + 0.5 * h * (1.0 + rule.x[k]), ty = t + y;
-                s.y.push_back(y);
-                s.weight.push_back(0.5 * h * rule.w[k] / (1.0 + ty * ty));
-            }
-            a = (h == end - a) ? end : a + h; // the last panel ends exactly at the end
-        }
+        if (u_lo >= series_u_min[k]) continue; // every item of the set uses the series
+        if (j > 0 && u_cap * delta[k] <= 2.0 * SLUT_GS_TAYLOR_X) continue; // every item uses the moments
+        append_interval_rule(tau[k], (j > 0) ? std::min(delta[k], y_cut) : y_cut, u_cap, panel_eps, s.y, s.weight);
     }
     s.begin.push_back(static_cast<int>(s.y.size()));
     return s;
+}
+
+// The Taylor moments m_jk = ((−1)^k/k!) Σ_n W_n (y_n − Δ_j/2)^k, k < SLUT_GS_TAYLOR_TERMS,
+// of each interval j ≥ 1 (slut_airlight.h), from its rule for every u ≤ 2·SLUT_GS_TAYLOR_X/Δ_j
+// (the rows that use them); zero for j = 0, which has no end.
+std::vector<double> taylor_moments(const std::vector<double> &tau, const std::vector<double> &delta, double panel_eps) {
+    constexpr size_t K = SLUT_GS_TAYLOR_TERMS;
+    static const std::array<double, K> kInverse = [] { // 1/(k + 1)
+        std::array<double, K> v{};
+        for (size_t k = 0; k < K; ++k) v[k] = 1.0 / static_cast<double>(k + 1);
+        return v;
+    }();
+    std::vector<double> m(tau.size() * K, 0.0), y, weight;
+    for (size_t j = 1; j < tau.size(); ++j) {
+        y.clear();
+        weight.clear();
+        append_interval_rule(tau[j], delta[j], 2.0 * SLUT_GS_TAYLOR_X / delta[j], panel_eps, y, weight);
+        double *mj = &m[j * K];
+        const double centre = 0.5 * delta[j];
+        for (size_t n = 0; n < y.size(); ++n) {
+            const double minus_offset = centre - y[n]; // −(y_n − Δ_j/2)
+            double term = weight[n];                   // W_n (−(y_n − Δ_j/2))^k / k!
+            for (size_t k = 0; k < K; ++k) {
+                mj[k] += term;
+                term *= minus_offset * kInverse[k];
+            }
+        }
+    }
+    return m;
 }
 
 template <class T> cl::Buffer input_buffer(Device &device, const std::vector<T> &v) {
@@ -235,11 +274,14 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
         tau[k] = std::cos(w_nodes[k]) / std::sin(w_nodes[k]); // as slut_w_gs_quadrature forms it
         if (j > 0) delta[k] = tau[k - 1] - tau[k];
     }
-    // Where the large-u series holds (slut_gs_series_u_min) it replaces the rule.
-    std::vector<double> series_u_min(w_nodes.size()), series_coef(w_nodes.size() * SLUT_GS_SERIES_TERMS);
+    // Where the large-u series holds (slut_gs_series_u_min) it replaces the rule; its
+    // coefficients only where a work-item uses it (the kernel tests lane 0's u).
+    std::vector<double> series_u_min(w_nodes.size()), series_coef(w_nodes.size() * SLUT_GS_SERIES_TERMS, 0.0);
+    double u_lo_max = 0; // the largest lane-0 u of any work-item
+    for (int k = 0; k < items; ++k) u_lo_max = std::max(u_lo_max, u_rows[static_cast<size_t>(kLanes * k)]);
     for (size_t k = 0; k < w_nodes.size(); ++k) {
         series_u_min[k] = slut_gs_series_u_min(w_nodes[k]);
-        slut_gs_large_u_coefficients(w_nodes[k], &series_coef[k * SLUT_GS_SERIES_TERMS]);
+        if (u_lo_max >= series_u_min[k]) slut_gs_large_u_coefficients(w_nodes[k], &series_coef[k * SLUT_GS_SERIES_TERMS]);
     }
 
     // Rule sets for rows u ≤ cap_c = u_max/4^c: a row of small u needs no panels for a
@@ -267,11 +309,12 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
         double &lo = set_u_lo[static_cast<size_t>(item_set[static_cast<size_t>(k)])];
         lo = std::min(lo, std::max(u_rows[static_cast<size_t>(kLanes * k)], u_min_positive));
     }
+    const std::vector<double> moments = taylor_moments(tau, delta, panel_eps);
+    // One thread: ~0.2 ms at 257², ~0.3 ms at 1025²; threads started per call made it
+    // slower and erratic on a loaded 2-core machine (0.2–3 ms).
     std::vector<RuleSet> sets(set_cap.size());
-    parallel_for(static_cast<int>(sets.size()), [&](int c) {
-        const size_t k = static_cast<size_t>(c);
+    for (size_t k = 0; k < sets.size(); ++k)
         if (set_u_lo[k] < HUGE_VAL) sets[k] = sweep_rule_set(tau, delta, series_u_min, set_u_lo[k], set_cap[k], panel_eps);
-    });
     std::vector<double> node_y, node_weight;
     std::vector<int> node_begin;
     for (RuleSet &set : sets) {
@@ -291,16 +334,19 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
                      b_delta = input_buffer(device, delta), b_set = input_buffer(device, item_set),
                      b_begin = input_buffer(device, node_begin), b_y = input_buffer(device, node_y),
                      b_weight = input_buffer(device, node_weight), b_series_u = input_buffer(device, series_u_min),
-                     b_series_c = input_buffer(device, series_coef);
+                     b_series_c = input_buffer(device, series_coef),
+                     b_moments = input_buffer(device, moments);
     int arg = 0;
     kernel.setArg(arg++, out);
     kernel.setArg(arg++, au.count);
     kernel.setArg(arg++, aw.count);
-    for (const cl::Buffer *b : {&b_u, &b_w, &b_delta, &b_set, &b_begin, &b_y, &b_weight, &b_series_u, &b_series_c})
+    for (const cl::Buffer *b : {&b_u, &b_w, &b_delta, &b_set, &b_begin, &b_y, &b_weight, &b_series_u, &b_series_c, &b_moments})
         kernel.setArg(arg++, *b);
     // Few, heavy work-items: a small local size spreads them over the cores (POCL-NOTES.md).
     device.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(static_cast<size_t>(items)), cl::NDRange(1));
-    void *mapped = device.queue().enqueueMapBuffer(out, CL_TRUE, CL_MAP_READ, 0, values.size() * sizeof(double));
+    // Map (the values are in `values` once it completes) and unmap queued behind the kernel,
+    // one wait for all three: each blocking call is a round trip to PoCL's worker threads.
+    void *mapped = device.queue().enqueueMapBuffer(out, CL_FALSE, CL_MAP_READ, 0, values.size() * sizeof(double));
     device.queue().enqueueUnmapMemObject(out, mapped);
     device.queue().finish();
     device.kernels_ran("airlight_F.cl");

@@ -62,6 +62,12 @@ void inline_includes(const std::string &name, std::set<std::string> &seen, std::
     }
 }
 
+// PoCL reads POCL_AFFINITY when the platform is first queried: 1 pins its worker threads
+// to cores. Unpinned, sub-millisecond kernels ran at half speed on this VM
+// (POCL-NOTES.md; the airlight sweep at 257²: 1.1–1.3 ms → 0.65 ms). A value the user
+// set wins. Other drivers ignore the variable.
+void pin_pocl_threads() { ::setenv("POCL_AFFINITY", "1", 0); }
+
 DeviceInfo describe_device(const cl::Platform &platform, const cl::Device &device, int p, int d) {
     DeviceInfo info;
     info.platform_index = p;
@@ -93,6 +99,7 @@ std::string embedded_source(const std::string &name) {
 
 std::vector<DeviceInfo> list_devices() {
     std::vector<DeviceInfo> out;
+    pin_pocl_threads();
     std::vector<cl::Platform> platforms;
     try {
         cl::Platform::get(&platforms);
@@ -118,6 +125,7 @@ Device::Device(const std::string &selector_in) {
     if (selector.empty()) {
         if (const char *env = std::getenv("SCATTERLUT_DEVICE")) selector = env;
     }
+    pin_pocl_threads();
     std::vector<cl::Platform> platforms;
     try {
         cl::Platform::get(&platforms);
