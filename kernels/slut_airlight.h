@@ -251,7 +251,8 @@ typedef struct slut_airlight_geometry {
     double far_attenuation; /* e^{−σ_t Δ}, Δ = s + d(s) − D ≥ 0                          */
     double c;          /* 2σ_t D sin(γ/2): exponent scale of the θ-integrand                */
     double dv;         /* w2 − w1 = ½ atan2(s sin γ, D − s cos γ): half the angle the ray
-                          segment subtends at the light                                    */
+                          segment subtends at the light (the full setups set it;
+                          slut_airlight_setup_far_end alone leaves −1: slut_airlight_dv)   */
     double tan_dv;     /* tan dv (+∞ for an infinite ray at γ = 0: never used there)        */
     double tan_w1;     /* tan w1 (0 for an infinite ray)                                   */
     double optical_delta; /* σ_t Δ (+∞ for an infinite ray)                                */
@@ -296,7 +297,9 @@ SLUT_FN void slut_airlight_setup_near_end(double sigma_s, double sigma_a, double
     g->optical_delta = sigma_t * fmax(s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D), 0.0);
 }
 
-/* w1, dv and e^{−σ_t Δ} from their tangents and exponent (slut_airlight_setup_near_end). */
+/* w1 and e^{−σ_t Δ} from tan w1 and σ_t Δ (slut_airlight_setup_near_end); dv is left to
+ * the callers that integrate (slut_airlight_setup_half_angle; slut_airlight_from_gs computes
+ * it where it falls back to the θ-integral). */
 SLUT_FN void slut_airlight_setup_far_end(slut_airlight_geometry *g) {
     if (g->kind != 0) return;
     if (!SLUT_ISFINITE(g->optical_delta)) { /* an infinite ray */
@@ -306,15 +309,26 @@ SLUT_FN void slut_airlight_setup_far_end(slut_airlight_geometry *g) {
         return;
     }
     g->w1 = atan(g->tan_w1);
-    g->dv = atan(g->tan_dv);
+    g->dv = -1.0; /* not computed: atan(tan_dv) */
     g->far_attenuation = exp(-g->optical_delta);
+}
+
+/* dv = w2 − w1, the θ-integral's length (from tan dv; w2 for an infinite ray). */
+SLUT_FN double slut_airlight_dv(const slut_airlight_geometry *g) {
+    return SLUT_ISFINITE(g->optical_delta) ? atan(g->tan_dv) : g->w2;
+}
+
+/* The far end and dv: what slut_airlight_setup_near_end leaves, for the exact radiance. */
+SLUT_FN void slut_airlight_setup_far_end_and_dv(slut_airlight_geometry *g) {
+    slut_airlight_setup_far_end(g);
+    if (g->kind == 0) g->dv = slut_airlight_dv(g);
 }
 
 SLUT_FN void slut_airlight_setup_half_angle(double sigma_s, double sigma_a, double intensity, double distance,
                                             double sin_half, double cos_half, double w2, double length,
                                             slut_airlight_geometry *g) {
     slut_airlight_setup_near_end(sigma_s, sigma_a, intensity, distance, sin_half, cos_half, w2, length, g);
-    slut_airlight_setup_far_end(g);
+    slut_airlight_setup_far_end_and_dv(g);
 }
 
 /* From sin γ and cos γ (γ ∈ [0, π]): 1 ∓ cos γ without cancellation on either side
@@ -430,7 +444,7 @@ SLUT_FN double slut_airlight_from_gs(const slut_airlight_geometry *g, double gs2
     double viewer_term = (g->w2 / g->sin_gamma) * gs2;
     double far_term = (g->w1 > 0.0) ? g->far_attenuation * (g->w1 / g->sin_gamma) * gs1 : 0.0;
     if (far_term <= 0.5 * viewer_term) return g->scale * (viewer_term - far_term);
-    return g->scale * (slut_airlight_theta_integral_rule(g->c, g->w2, g->dv, 0) / g->sin_gamma);
+    return g->scale * (slut_airlight_theta_integral_rule(g->c, g->w2, slut_airlight_dv(g), 0) / g->sin_gamma);
 }
 
 /* Which representation serves G̃(u, w) for a table covering u ≤ u_max, w ≥ w_min:

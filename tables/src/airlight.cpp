@@ -37,7 +37,7 @@ slut_airlight_geometry setup_near_end(const AirlightQuery &q) {
 
 slut_airlight_geometry setup(const AirlightQuery &q) {
     slut_airlight_geometry g = setup_near_end(q);
-    slut_airlight_setup_far_end(&g);
+    slut_airlight_setup_far_end_and_dv(&g);
     return g;
 }
 
@@ -101,6 +101,7 @@ AirlightTable::AirlightTable(Table table) : table_(std::move(table)) {
     require(std::fabs(table_.axes[1].map.max - 1.5707963267948966) < 1e-12,
             "airlight table w axis must end at pi/2");
     cache_ = make_sampler_cache(table_);
+    values32_ = float_values_if_exact(table_);
     u_max_ = table_.axes[0].map.max;
     w_min_ = table_.axes[1].map.min;
 }
@@ -117,7 +118,7 @@ double AirlightTable::scaled_tail_at(double unit_u, double u, double w, double a
         const double unit[2] = {
             unit_u, u > 0.0 ? (slut_warp_asinh_cot_from_cot(a / u) - cache_.g0[1]) / (cache_.g1[1] - cache_.g0[1])
                             : slut_unit_from_warped_runtime(&axis_w, w, cache_.g0[1], cache_.g1[1])};
-        return std::exp(sample_encoded_at_unit(table_, unit, 0));
+        return std::exp(sample_encoded_at_unit(table_, values32_, unit, 0));
     }
     }
 }

@@ -121,6 +121,7 @@ NearLightTable::NearLightTable(Table table) : table_(std::move(table)) {
             std::string("near-light table channel 0 must be ") + channel + " (log encoded)");
     table_.check_consistent();
     cache_ = make_sampler_cache(table_);
+    values32_ = float_values_if_exact(table_);
 }
 
 bool NearLightTable::covers(double T, double g, double r, double S) const {
@@ -135,9 +136,9 @@ double NearLightTable::E(double T, double g, double r, double S) const {
     double unit[4];
     const double p[3] = {T, g, r};
     for (size_t a = 0; a < 3; ++a) unit[a] = slut_unit_from_warped_runtime(&table_.axes[a].map, p[a], cache_.g0[a], cache_.g1[a]);
-    if (thick_only()) return std::exp(sample_encoded_at_unit(table_, unit, 0));
+    if (thick_only()) return std::exp(sample_encoded_at_unit(table_, values32_, unit, 0));
     unit[3] = slut_nl_unit_from_S(&table_.axes[3].map, T, g, S);
-    return std::exp(sample_encoded_at_unit(table_, unit, 0)) * slut_nl_E_base(T, r, S);
+    return std::exp(sample_encoded_at_unit(table_, values32_, unit, 0)) * slut_nl_E_base(T, r, S);
 }
 
 void NearLightTable::node_params(const size_t *node, double *params) const {

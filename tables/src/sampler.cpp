@@ -39,8 +39,8 @@ double lerp_exact_ends(double lower, double upper, double f) {
     return f == 0.0 ? lower : f == 1.0 ? upper : lower + f * (upper - lower);
 }
 
-template <size_t N>
-double interpolate_cell(const Table &table, const double *unit, size_t channel) {
+template <size_t N, typename Value>
+double interpolate_cell(const Table &table, const Value *all_values, const double *unit, size_t channel) {
     constexpr size_t corners = size_t{1} << N;
     double frac[N];
     size_t offset[corners];
@@ -55,7 +55,7 @@ double interpolate_cell(const Table &table, const double *unit, size_t channel) 
         for (size_t c = 0; c < half; ++c) offset[half + c] = offset[c] + stride;
         stride *= static_cast<size_t>(count);
     }
-    const double *values = table.values.data() + base;
+    const Value *values = all_values + base;
     double v[corners];
     for (size_t c = 0; c < corners; ++c) v[c] = values[offset[c]];
     for (size_t a = N; a-- > 0;) {
@@ -65,19 +65,39 @@ double interpolate_cell(const Table &table, const double *unit, size_t channel) 
     return v[0];
 }
 
+template <typename Value>
+double interpolate(const Table &table, const Value *values, const double *unit, size_t channel) {
+    switch (table.axes.size()) {
+    case 1: return interpolate_cell<1>(table, values, unit, channel);
+    case 2: return interpolate_cell<2>(table, values, unit, channel);
+    case 3: return interpolate_cell<3>(table, values, unit, channel);
+    case 4: return interpolate_cell<4>(table, values, unit, channel);
+    case 5: return interpolate_cell<5>(table, values, unit, channel);
+    case 6: return interpolate_cell<6>(table, values, unit, channel);
+    case 7: return interpolate_cell<7>(table, values, unit, channel);
+    default: return interpolate_cell<8>(table, values, unit, channel); // the file format's bound
+    }
+}
+
 } // namespace
 
 double sample_encoded_at_unit(const Table &table, const double *unit, size_t channel) {
-    switch (table.axes.size()) {
-    case 1: return interpolate_cell<1>(table, unit, channel);
-    case 2: return interpolate_cell<2>(table, unit, channel);
-    case 3: return interpolate_cell<3>(table, unit, channel);
-    case 4: return interpolate_cell<4>(table, unit, channel);
-    case 5: return interpolate_cell<5>(table, unit, channel);
-    case 6: return interpolate_cell<6>(table, unit, channel);
-    case 7: return interpolate_cell<7>(table, unit, channel);
-    default: return interpolate_cell<8>(table, unit, channel); // the file format's bound
+    return interpolate(table, table.values.data(), unit, channel);
+}
+
+double sample_encoded_at_unit(const Table &table, const std::vector<float> &values, const double *unit,
+                              size_t channel) {
+    return values.empty() ? interpolate(table, table.values.data(), unit, channel)
+                          : interpolate(table, values.data(), unit, channel);
+}
+
+std::vector<float> float_values_if_exact(const Table &table) {
+    std::vector<float> out(table.values.size());
+    for (size_t k = 0; k < out.size(); ++k) {
+        out[k] = static_cast<float>(table.values[k]);
+        if (static_cast<double>(out[k]) != table.values[k]) return {};
     }
+    return out;
 }
 
 double sample(const Table &table, const double *params, size_t channel) {

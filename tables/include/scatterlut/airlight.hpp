@@ -68,6 +68,7 @@ private:
     double scaled_tail_at(double unit_u, double u, double w, double a) const; // G̃ given it
     Table table_;
     SamplerCache cache_; // of table_
+    std::vector<float> values32_; // table_.values as floats when exact (sample_encoded_at_unit)
     double u_max_ = 0;
     double w_min_ = 0;
 };
