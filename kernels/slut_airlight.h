@@ -412,15 +412,20 @@ SLUT_CONSTANT double slut_gl6_w[3] = {0.467913934572691047390, 0.360761573048138
  * bench's geometries and ≤ 1e-10 over the test grid (tests/test_airlight,
  * OnePanelThetaRuleMatchesExactThetaIntegral). sin w2 = cos(γ/2), cos w2 = sin(γ/2). */
 SLUT_FN int slut_airlight_theta_fits_one_panel(const slut_airlight_geometry *g) {
-    return g->tan_dv <= 0.25 * g->w2 && g->c * g->tan_dv <= 4.0 * g->cos_half;
+    return g->kind == 0 && g->tan_dv <= 0.25 * g->w2 && g->c * g->tan_dv <= 4.0 * g->cos_half;
 }
 SLUT_FN double slut_airlight_theta_integral_one_panel(double c, double sin_w2, double cos_w2, double tan_dv) {
-    double half_len = 0.5 * tan_dv, sum = 0.0;
-    for (int k = 0; k < 3; ++k) {
-        double t0 = half_len * (1.0 - slut_gl6_x[k]), t1 = half_len * (1.0 + slut_gl6_x[k]);
-        sum += slut_gl6_w[k] * (exp(-c * t0 / (sin_w2 - t0 * cos_w2)) / (1.0 + t0 * t0) +
-                                exp(-c * t1 / (sin_w2 - t1 * cos_w2)) / (1.0 + t1 * t1));
+    /* The exponents first, then the exps, then the sum: the six divides and the six exp
+     * calls are independent and overlap (a loop of exp-then-divide serialises on them). */
+    double half_len = 0.5 * tan_dv, exponent[6], weight[6], sum = 0.0;
+    for (int k = 0; k < 6; ++k) {
+        double x = (k < 3) ? -slut_gl6_x[k] : slut_gl6_x[k - 3];
+        double t = half_len * (1.0 + x);
+        exponent[k] = -c * t / (sin_w2 - t * cos_w2);
+        weight[k] = slut_gl6_w[k < 3 ? k : k - 3] / (1.0 + t * t);
     }
+    for (int k = 0; k < 6; ++k) exponent[k] = exp(exponent[k]);
+    for (int k = 0; k < 6; ++k) sum += weight[k] * exponent[k];
     return half_len * sum;
 }
 
