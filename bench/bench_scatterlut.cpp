@@ -303,18 +303,29 @@ void BM_NearLightE(benchmark::State &state) {
 BENCHMARK(BM_NearLightE)->Arg(3)->Arg(4);
 
 // Airlight geometries over the table's domain: σ_t D ∈ [1e-3, 10], γ ∈ (0, π), s ∈ [0.01 D, 10 D].
+// Arg 0: all of them; 1: only those one θ-panel covers (slut_airlight_theta_fits_one_panel:
+// no table sample); 2: only the others (two table samples, or the panel rule where the two
+// ends' terms would cancel). The per-path costs say where the time goes.
 void BM_AirlightRadiance(benchmark::State &state) {
     const scatterlut::AirlightTable table(default_airlight_table());
     std::mt19937_64 rng(9);
     std::uniform_real_distribution<double> unit(0, 1);
-    std::vector<scatterlut::AirlightQuery> qs(kPoints);
-    for (auto &q : qs) {
+    std::vector<scatterlut::AirlightQuery> qs;
+    while (qs.size() < kPoints) {
+        scatterlut::AirlightQuery q;
         q.sigma_s_per_m = 0.5;
         q.sigma_a_per_m = 0.1;
         q.intensity_W_per_sr = 1.0;
         q.distance_m = std::pow(10.0, -3.0 + 4.0 * unit(rng)) / 0.6;
         q.gamma_rad = 1e-3 + (M_PI - 2e-3) * unit(rng);
         q.length_m = q.distance_m * std::pow(10.0, -2.0 + 3.0 * unit(rng));
+        if (state.range(0) != 0) {
+            slut_airlight_geometry g;
+            slut_airlight_setup(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
+                                std::sin(q.gamma_rad), std::cos(q.gamma_rad), q.length_m, &g);
+            if ((state.range(0) == 1) != (slut_airlight_theta_fits_one_panel(&g) != 0)) continue;
+        }
+        qs.push_back(q);
     }
     size_t k = 0;
     for (auto _ : state) {
@@ -322,7 +333,7 @@ void BM_AirlightRadiance(benchmark::State &state) {
         k = (k + 1) % kPoints;
     }
 }
-BENCHMARK(BM_AirlightRadiance);
+BENCHMARK(BM_AirlightRadiance)->Arg(0)->Arg(1)->Arg(2);
 
 // Near-light geometries: light 0.1–10 m from the entry point above the plane, view
 // directions over the upper hemisphere, thick (3-D table) or slabs of 1 mm – 10 m (4-D).

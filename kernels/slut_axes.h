@@ -37,6 +37,7 @@
 #define SLUT_AXES_H
 
 #include "slut_compat.h"
+#include "slut_fastmath.h"
 
 /* SLUT_SHADER_BEGIN (the axis maps: also the GLSL/HLSL snippets') */
 #define SLUT_WARP_LINEAR 0
@@ -157,6 +158,18 @@ SLUT_FN void slut_axis_warped_ends(const slut_axis *a, double *g0, double *g1) {
 /* Parameter → unit coordinate x ∈ [0, 1] given the axis's warped ends (as slut_unit_from_warp). */
 SLUT_FN double slut_unit_from_warped(const slut_axis *a, double p, double g0, double g1) {
     return slut_unit_from_warped_ends(a->warp, p, a->min, a->max, a->scale, g0, g1);
+}
+
+/* The runtime samplers' parameter → unit coordinate: slut_unit_from_warped with the ends
+   returned exactly (0 for p ≤ min and NaN, 1 for p ≥ max: the end nodes are hit whatever
+   the rounding of the warp there) and LOG1P by Goldberg's form (slut_log1p_goldberg: a log
+   and a divide instead of libm's log1p, within a few ulps of it; tests/test_fastmath). */
+SLUT_FN double slut_unit_from_warped_runtime(const slut_axis *a, double p, double g0, double g1) {
+    if (!(p > a->min)) return 0.0;
+    if (p >= a->max) return 1.0;
+    double gp = (a->warp == SLUT_WARP_LOG1P) ? slut_log1p_goldberg((p - a->min) / a->scale)
+                                             : slut_warp_forward(a->warp, p, a->min, a->scale);
+    return (gp - g0) / (g1 - g0);
 }
 
 /* The ASINH_COT warp from cot p instead of p: g = −asinh(cot p) = −ln(cot p + √(1 + cot² p)),

@@ -21,11 +21,23 @@ void require(bool ok, const char *message) {
     if (!ok) throw std::invalid_argument(message);
 }
 
-slut_airlight_geometry setup(const AirlightQuery &q) {
+// From the half angle h = γ/2 (clamped to π/2 against the rounding the check allows):
+// w2 = π/2 − h exactly, sin h and cos h by slut_sincos_half_angle (no libm call). The far
+// end's angles and attenuation are left to slut_airlight_setup_far_end.
+slut_airlight_geometry setup_near_end(const AirlightQuery &q) {
     check_airlight_query(q);
+    const double half = std::fmin(0.5 * q.gamma_rad, SLUT_PIO2_HI);
+    double sin_half, cos_half;
+    slut_sincos_half_angle(half, &sin_half, &cos_half);
     slut_airlight_geometry g;
-    slut_airlight_setup(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
-                        std::sin(q.gamma_rad), std::cos(q.gamma_rad), q.length_m, &g);
+    slut_airlight_setup_near_end(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m, sin_half,
+                                 cos_half, slut_pio2_minus(half), q.length_m, &g);
+    return g;
+}
+
+slut_airlight_geometry setup(const AirlightQuery &q) {
+    slut_airlight_geometry g = setup_near_end(q);
+    slut_airlight_setup_far_end_and_dv(&g);
     return g;
 }
 
@@ -89,26 +101,33 @@ AirlightTable::AirlightTable(Table table) : table_(std::move(table)) {
     require(std::fabs(table_.axes[1].map.max - 1.5707963267948966) < 1e-12,
             "airlight table w axis must end at pi/2");
     cache_ = make_sampler_cache(table_);
+    values32_ = float_values_if_exact(table_);
     u_max_ = table_.axes[0].map.max;
     w_min_ = table_.axes[1].map.min;
 }
 
 // The table regime from (u, w, a = u·cot w): for u > 0 the w axis's ASINH_COT warp is
 // −asinh(a/u), which skips the cos, sin and log of the warp in w (u = 0 has no cot w in a).
-double AirlightTable::scaled_tail(double u, double w, double a) const {
+// unit_u is u's unit coordinate (one per u: the radiance's two ends share it).
+double AirlightTable::scaled_tail_at(double unit_u, double u, double w, double a) const {
     switch (slut_gs_regime(u, w, u_max_, w_min_)) {
     case SLUT_GS_LARGE_U: return slut_gs_large_u(u, w);
     case SLUT_GS_SMALL_W: return slut_gs_small_w(w, a);
     default: {
-        const slut_axis &axis_u = table_.axes[0].map, &axis_w = table_.axes[1].map;
+        const slut_axis &axis_w = table_.axes[1].map;
         const double unit[2] = {
-            slut_unit_from_warped(&axis_u, u, cache_.g0[0], cache_.g1[0]),
-            u > 0.0 ? (slut_warp_asinh_cot_from_cot(a / u) - cache_.g0[1]) / (cache_.g1[1] - cache_.g0[1])
-                    : slut_unit_from_warped(&axis_w, w, cache_.g0[1], cache_.g1[1])};
-        return std::exp(sample_encoded_at_unit(table_, unit, 0));
+            unit_u, u > 0.0 ? (slut_warp_asinh_cot_from_cot(a / u) - cache_.g0[1]) / (cache_.g1[1] - cache_.g0[1])
+                            : slut_unit_from_warped_runtime(&axis_w, w, cache_.g0[1], cache_.g1[1])};
+        return std::exp(sample_encoded_at_unit(table_, values32_, unit, 0));
     }
     }
 }
+
+double AirlightTable::unit_u(double u) const {
+    return slut_unit_from_warped_runtime(&table_.axes[0].map, u, cache_.g0[0], cache_.g1[0]);
+}
+
+double AirlightTable::scaled_tail(double u, double w, double a) const { return scaled_tail_at(unit_u(u), u, w, a); }
 
 // a = u·cot w is needed only below w_min (slut_gs_small_w): computed there alone.
 double AirlightTable::scaled_tail(double u, double w) const {
@@ -132,11 +151,18 @@ double AirlightTable::F(double u, double v) const {
     return std::fmax(whole - tail(u, v), 0.0);
 }
 
+// A segment short enough for one panel takes the θ-integral directly (6 exps, more
+// accurate than the table and cheaper than two lookups); the others the two table samples
+// (slut_airlight_from_gs, which still integrates where they would cancel).
 double AirlightTable::radiance(const AirlightQuery &q) const {
-    const slut_airlight_geometry g = setup(q);
+    slut_airlight_geometry g = setup_near_end(q);
     if (g.kind != 0) return slut_airlight_from_gs(&g, 0.0, 0.0);
-    const double gs2 = scaled_tail(g.u, g.w2, g.a2);
-    const double gs1 = g.w1 > 0.0 ? scaled_tail(g.u, g.w1, g.a1) : 0.0;
+    if (slut_airlight_theta_fits_one_panel(&g))
+        return g.scale * (slut_airlight_theta_integral_one_panel(g.c, g.cos_half, g.sin_half, g.tan_dv) / g.sin_gamma);
+    slut_airlight_setup_far_end(&g);
+    const double at_u = unit_u(g.u);
+    const double gs2 = scaled_tail_at(at_u, g.u, g.w2, g.a2);
+    const double gs1 = g.w1 > 0.0 ? scaled_tail_at(at_u, g.u, g.w1, g.a1) : 0.0;
     return slut_airlight_from_gs(&g, gs2, gs1);
 }
 

@@ -121,6 +121,7 @@ NearLightTable::NearLightTable(Table table) : table_(std::move(table)) {
             std::string("near-light table channel 0 must be ") + channel + " (log encoded)");
     table_.check_consistent();
     cache_ = make_sampler_cache(table_);
+    values32_ = float_values_if_exact(table_);
 }
 
 bool NearLightTable::covers(double T, double g, double r, double S) const {
@@ -133,10 +134,11 @@ bool NearLightTable::covers(double T, double g, double r, double S) const {
 double NearLightTable::E(double T, double g, double r, double S) const {
     if (!covers(T, g, r, S)) return T > 0.0 ? slut_nl_E(T, g, r, S) : 1.0;
     double unit[4];
-    for (size_t a = 0; a < 3; ++a) unit[a] = slut_unit_from_warped(&table_.axes[a].map, a == 0 ? T : a == 1 ? g : r, cache_.g0[a], cache_.g1[a]);
-    if (thick_only()) return std::exp(sample_encoded_at_unit(table_, unit, 0));
+    const double p[3] = {T, g, r};
+    for (size_t a = 0; a < 3; ++a) unit[a] = slut_unit_from_warped_runtime(&table_.axes[a].map, p[a], cache_.g0[a], cache_.g1[a]);
+    if (thick_only()) return std::exp(sample_encoded_at_unit(table_, values32_, unit, 0));
     unit[3] = slut_nl_unit_from_S(&table_.axes[3].map, T, g, S);
-    return std::exp(sample_encoded_at_unit(table_, unit, 0)) * slut_nl_E_base(T, r, S);
+    return std::exp(sample_encoded_at_unit(table_, values32_, unit, 0)) * slut_nl_E_base(T, r, S);
 }
 
 void NearLightTable::node_params(const size_t *node, double *params) const {

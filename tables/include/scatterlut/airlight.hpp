@@ -53,8 +53,10 @@ public:
     double F(double u, double v) const;
     double tail(double u, double v) const;
 
-    // Radiance as airlight_radiance_exact, from two table samples (or a short Gauss rule
-    // where the two ends' terms would cancel).
+    // Radiance as airlight_radiance_exact: for a segment that one Gauss panel integrates
+    // (slut_airlight_theta_fits_one_panel) the θ-integral itself, 6 points in t = tan θ;
+    // otherwise from two table samples (or the panel rule where the two ends' terms would
+    // cancel).
     double radiance(const AirlightQuery &q) const;
 
     const Table &table() const { return table_; }
@@ -62,8 +64,11 @@ public:
     double w_min() const { return w_min_; }
 
 private:
+    double unit_u(double u) const;                                     // u's unit coordinate
+    double scaled_tail_at(double unit_u, double u, double w, double a) const; // G̃ given it
     Table table_;
     SamplerCache cache_; // of table_
+    std::vector<float> values32_; // table_.values as floats when exact (sample_encoded_at_unit)
     double u_max_ = 0;
     double w_min_ = 0;
 };

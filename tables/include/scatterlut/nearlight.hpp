@@ -68,6 +68,7 @@ public:
 private:
     Table table_;
     SamplerCache cache_; // of table_
+    std::vector<float> values32_; // table_.values as floats when exact (sample_encoded_at_unit)
 };
 
 } // namespace scatterlut

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "scatterlut/table.hpp"
 
@@ -33,6 +34,14 @@ double sample_encoded(const Table &table, const SamplerCache &cache, const doubl
 // [0, 1]): for axes whose unit coordinate is not a one-parameter warp (the near-light slab
 // axis, SLUT_WARP_NL_QODDS), computed by the caller (NearLightTable).
 double sample_encoded_at_unit(const Table &table, const double *unit, size_t channel = 0);
+
+// The same from a float copy of table.values (float_values_if_exact; empty: table.values):
+// identical results, half the memory a lookup touches (the cells of a random query miss
+// the caches: the default near-light tables are 3.9 MB and 63 MB as doubles).
+double sample_encoded_at_unit(const Table &table, const std::vector<float> &values, const double *unit,
+                              size_t channel = 0);
+// table.values as floats if every value is one (f16 and f32 storage: always), else empty.
+std::vector<float> float_values_if_exact(const Table &table);
 
 // Decodes one stored value of a channel.
 double decode(Encoding encoding, double stored);
