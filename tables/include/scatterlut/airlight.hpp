@@ -40,6 +40,8 @@ double airlight_radiance_exact(const AirlightQuery &q); // quadrature, ~1e-13 re
 class AirlightTable {
 public:
     // Checks kind, quantity version, axes and channel; throws std::invalid_argument.
+    // Keeps the values as doubles (table()) and, for f16/f32 storage, a float copy that the
+    // lookups read: 12 bytes per node.
     explicit AirlightTable(Table table);
 
     // G̃(u, w) with a = u·cot w given by the caller (exact where the caller has it):

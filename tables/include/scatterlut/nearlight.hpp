@@ -53,6 +53,8 @@ double near_light_radiance_distant(const NearLightQuery &q);
 //    (warp nl_qodds) spans slabs S ∈ [min, max]; its unit coordinate depends on (T, g)
 //    (slut_nl_unit_from_S, kernels/slut_nearlight.h; docs/NEARLIGHT.md).
 // Outside the table's domain E is integrated exactly (~1 µs), never clamped.
+// Memory: the values as doubles (table()) plus, for f16/f32 storage, a float copy that the
+// lookups read (half the bytes a random lookup touches): 12 bytes per node.
 class NearLightTable {
 public:
     explicit NearLightTable(Table table); // checks kind, version, axes, channel
