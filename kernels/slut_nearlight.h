@@ -239,6 +239,54 @@ SLUT_FN double slut_nl_panel_length(double tau, double dl, double eta, double r_
     return fmin(h, (2.0 * L / B) / (1.0 + sqrt(1.0 + (8.0 * L / B) * (k_rate / B))));
 }
 
+/* Length of the next panel in the layer variable s = ln(1 + τ/c) (dτ = (c + τ) ds), c = r_pole:
+ * returns D, the panel [τ, τ + (c + τ)(e^D − 1)] in τ; dl, eta, k_layer as for
+ * slut_nl_panel_length but k_layer = max of r/(τ + r)² over the lanes whose layer matters
+ * (r ≥ c). The march uses it where it gives the longer panel (near the smallest layer).
+ *
+ * Why: in τ the ellipse rule of the singularity at τ = −c lets panels grow only by
+ * 1 + 2/(A − 1) each (×4.2 at the default refine 0.63), ~ln(1/c)/1.4 panels from c to τ ~ 1.
+ * In s that singularity sits at s = −∞, and the others at τ = −r_j (r_j > c) at
+ * s_j = ln((r_j − c)/(c + τ)) + iπ (relative to the panel start): at height π whatever r_j is.
+ * Rules, all in s relative to the panel start, each valid over the panel:
+ *  1. Bernstein ellipse (as slut_nl_panel_length): a singularity at x + iy needs
+ *     |s_p| + |s_p − D| ≥ A D, which solves to D ≤ 2(A|s_p| − x)/(A² − 1). At y = π the
+ *     minimum over x (at x = π/√(A² − 1), the middle of the panel) is D ≤ 2π/√(A² − 1)
+ *     (3.6 at A = 2, 4.9 at refine 0.63: panels of ×37 … ×130 in c + τ) for every lane at
+ *     once. The poles of 1/η² at τ = −g ± i√(1−g²) sit at s_p = ln((c − g) ± i√(1−g²)) −
+ *     ln(c + τ): x = ½ ln((c − g)² + 1 − g²) − ln(c + τ), y = atan2(√(1−g²), c − g).
+ *     (Lanes with r < c do not matter, as in the τ rules: their layer is < 1e-17 e-folds.)
+ *  2. Decay: the integrand in s is e^{−Tφ(τ(s))} (c + τ(s)) / η², the exponent's slope
+ *     |dφ/ds| = (c + τ')|φ'(τ')| ≤ 2(c + τ') + 2η(τ') (c + τ') max_j r_j/(τ' + r_j)² (the
+ *     layer counted twice, as in τ), and the Jacobian's slope is 1. Over the panel
+ *     c + τ' ≤ (c + τ)e^D, η(τ') ≤ η + (c + τ)(e^D − 1), and per lane (c + τ')r/(τ' + r)² ≤
+ *     e^D (c + τ) r/(τ + r)² and ≤ (c + τ')/(τ' + r) ≤ 1 (r ≥ c). Require D·G(D) ≤
+ *     L = SLUT_NL_EFOLDS/refine with G(D) = 1 + T[2(c + τ)e^D + 2(η + (c + τ)(e^D − 1))
+ *     min(1, e^D (c + τ) k_layer)], increasing in D: from an upper bound D_up of the root
+ *     D*, L/G(D_up) ≤ D* is a valid length, and from a valid one L/G(D) ≥ D* an upper bound;
+ *     two rounds from the ellipse bound (three exp) land within a few % of D*.
+ * refine scales as in slut_nl_panel_length (A → 1 + (A − 1)·refine, L → L/refine). */
+SLUT_FN double slut_nl_layer_panel_log_length(double tau, double g, double sg, double eta, double c,
+                                              double k_layer, double T, double refine) {
+    double A = 1.0 + (SLUT_NL_ELLIPSE - 1.0) * refine, A2m1 = A * A - 1.0;
+    double L = SLUT_NL_EFOLDS / refine;
+    double ct = c + tau;
+    double D_cap = 2.0 * 3.14159265358979323846 / sqrt(A2m1);
+    double cg = c - g;
+    double x = 0.5 * log(cg * cg + sg * sg) - log(ct), y = atan2(sg, cg);
+    D_cap = fmin(D_cap, 2.0 * (A * sqrt(x * x + y * y) - x) / A2m1);
+    double D = D_cap;
+    for (int round = 0; round < 3; ++round) {
+        double eD = exp(D);
+        double layer = fmin(1.0, eD * ct * k_layer);
+        double G = 1.0 + T * (2.0 * ct * eD + 2.0 * (eta + ct * (eD - 1.0)) * layer);
+        double next = L / G; /* rounds 0 and 2: valid (≤ D*); round 1: an upper bound (≥ D*) */
+        if (round == 0 && next >= D_cap) return D_cap;
+        D = (round == 1) ? fmin(D_cap, next) : next;
+    }
+    return D;
+}
+
 /* E(T, g, r_j, S_i) for up to SLUT_NL_MAX_LANES values r_j sharing one panel mesh and up to
  * SLUT_NL_MAX_SWEEP slab depths S_0 ≤ S_1 ≤ … (ascending; +∞ allowed last) sharing one march
  * (the cumulative sweep); E_out[i·lanes + j] = E(T, g, r_j, S_i) ∈ [0, 1]. Returns the number
@@ -373,15 +421,27 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
          * on [τ, τ + h] the layer changes the exponent by Tηr/(τ'+r) ≤ T r·max(η(τ)/(τ+r), 1);
          * below 1e-17 it changes no double and its pole needs no rule (else r = 1e-300 would
          * cost ~700 geometric panels). */
-        double k_rate = 0.0, r_pole = SLUT_HUGE_VAL;
+        double k_rate = 0.0, k_layer = 0.0, r_pole = SLUT_HUGE_VAL;
         for (b = 0; b < blocks; ++b) {
+            slut_nl_lanes slope = slut_nl_layer_slope(tau, rr[b]);
             slut_nl_lanes matters = SLUT_NL_LANES_SELECT(
                 SLUT_NL_LANES_SPLAT(SLUT_HUGE_VAL), rr[b],
                 (rr[b] > 0.0) & (T * rr[b] * fmax(eta / (tau + rr[b]), 1.0) > 1e-17));
-            k_rate = fmax(k_rate, slut_nl_lanes_max(slut_nl_layer_slope(tau, rr[b])));
+            k_rate = fmax(k_rate, slut_nl_lanes_max(slope));
+            k_layer = fmax(k_layer, slut_nl_lanes_max(SLUT_NL_LANES_SELECT(SLUT_NL_LANES_SPLAT(0.0), slope,
+                                                                           matters <= 1e300)));
             r_pole = fmin(r_pole, slut_nl_lanes_min(matters));
         }
         double h = slut_nl_panel_length(tau, dl, eta, r_pole, k_rate, T, refine);
+        /* Near the smallest layer that matters, the layer variable s = ln(1 + τ/r_pole) where
+         * it gives the longer panel (slut_nl_layer_panel_log_length); D = the panel in s. */
+        int in_s = 0;
+        double D = 0.0, ct = tau + r_pole;
+        if (!carry_d && r_pole > 0.0 && r_pole <= 1e300) {
+            double D_s = slut_nl_layer_panel_log_length(tau, g, sg, eta, r_pole, k_layer, T, refine);
+            double h_s = ct * expm1(D_s);
+            if (h_s > h) { in_s = 1; D = D_s; h = h_s; }
+        }
         SLUT_ASSERT(h > 0.0);
         if (!(h > 0.0)) break; /* cannot happen (every rule is > 0 for η > 0); never loop on it */
         /* The panel ends at the next node if it would cross it (a node at S/T > 1e300 counts
@@ -391,16 +451,35 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
         if (!(tau_node > 1e300)) {
             d_node = (next == stop - 1) ? d_end : tau_node + g;
             double remaining = carry_d ? d_node - dl : tau_node - tau;
-            if (h >= remaining) { h = fmax(remaining, 0.0); at_node = 1; } /* ≥ 0: the nodes ascend */
+            if (h >= remaining) {
+                h = fmax(remaining, 0.0); /* ≥ 0: the nodes ascend */
+                at_node = 1;
+                if (in_s) D = log1p(h / ct);
+            }
         }
+        /* The 16 nodes: in τ, offsets h/2 (1 ± x_k) with weights h/2 w_k; in s, offsets
+         * o = D/2 (1 ± x_k), τ_n − τ = (c + τ)(e^o − 1), weights D/2 w_k (c + τ)e^o. e^o − 1 by
+         * expm1 on the side near the start (relative precision where τ_n is small, which the
+         * layer needs) and from it on the far side, (e^D − 1 − (e^o − 1))/e^o (no cancellation:
+         * e^D − 1 ≥ 2(e^o − 1) there). */
         double half_len = 0.5 * h; /* not "half": a type name in OpenCL C */
+        double em_D = in_s ? expm1(D) : 0.0;
         for (int k = 0; k < 8; ++k) {
+            double em_near = in_s ? expm1(0.5 * D * (1.0 - slut_gl16_x[k])) : 0.0;
             for (int side = -1; side <= 1; side += 2) {
-                double off = half_len + (double)side * half_len * slut_gl16_x[k];
+                double off, wt;
+                if (in_s) {
+                    double em = (side < 0) ? em_near : (em_D - em_near) / (1.0 + em_near);
+                    off = ct * em;
+                    wt = 0.5 * D * slut_gl16_w[k] * ct * (1.0 + em);
+                } else {
+                    off = half_len + (double)side * half_len * slut_gl16_x[k];
+                    wt = half_len * slut_gl16_w[k];
+                }
                 double tn = carry_d ? (dl + off) - g : tau + off;
                 double dn = carry_d ? dl + off : tn + g;
                 double en2 = dn * dn + sg2, en = sqrt(en2);
-                double base = half_len * slut_gl16_w[k] * inv_H / en2;
+                double base = wt * inv_H / en2;
                 for (b = 0; b < blocks; ++b) sum[b] += base * exp(-T * (tn + en * slut_nl_q(tn, rr[b])));
                 ++nodes;
             }
