@@ -830,14 +830,19 @@ SLUT_FN double slut_distant_light_radiance(double sigma_s_per_m, double sigma_a_
  * averaged over the path, E ≈ (1 − e^{−x})/x, x = (1+c)S = S(1+r)/r. Limits: x → 0 gives 1
  * (also S = 0), S = ∞ or r = 0 (S > 0) gives 0 — the approximation is wrong for thick media
  * and as r → 0, as DESIGN says; it never returns NaN. */
+/* Its two steps for 0 < S < ∞ as expressions of variables r (≥ 0), S and x, written once for
+ * a scalar and for the table kernel's lane vector of r (OpenCL C's ?: selects per element
+ * where the condition is a lane comparison; S is a scalar): x = (1 + c)S (r = ∞: S, r = 0: ∞),
+ * then (1 − e^{−x})/x: 1 below SLUT_TINY, 1/x above 40 (e^{−x} < 5e-18: 1 − e^{−x} rounds to 1,
+ * the same value without expm1; also x = ∞: 0). */
+#define SLUT_NL_THIN_X(r, S) (((r) > SLUT_INFINITE_ABOVE) ? (S) : (S) * ((1.0 + (r)) / (r)))
+#define SLUT_NL_THIN_OF_X(x) (((x) < SLUT_TINY) ? 1.0 : (((x) > 40.0) ? 1.0 / (x) : -expm1(-(x)) / (x)))
 SLUT_FN double slut_nl_E_thin(double r, double S) {
     SLUT_ASSERT(r >= 0.0 && S >= 0.0);
     if (!(S > 0.0)) return 1.0;
     if (!(r > 0.0) || S > SLUT_INFINITE_ABOVE) return 0.0;
-    double x = (r > SLUT_INFINITE_ABOVE) ? S : S * ((1.0 + r) / r);
-    if (x < SLUT_TINY) return 1.0;
-    if (x > 40.0) return 1.0 / x; /* e^{−x} < 5e-18: 1 − e^{−x} rounds to 1 (the same value, no expm1) */
-    return -expm1(-x) / x;
+    double x = SLUT_NL_THIN_X(r, S);
+    return SLUT_NL_THIN_OF_X(x);
 }
 
 /* SLUT_SHADER_END */
@@ -866,10 +871,15 @@ SLUT_FN double slut_nl_N_thin(double T, double g, double r, double S) {
  * B ≥ e^{−T} > 0 for T ≤ 700; B = 1 at T = 0. */
 /* SLUT_SHADER_BEGIN (the value base: also the GLSL/HLSL snippets') */
 /* B from its factors that depend on T alone, floor_T = e^{−T} and rise_T = 1 − e^{−T}
- * (= −expm1(−T)): the table kernel computes them once per T node, not once per node. */
+ * (= −expm1(−T)): the table kernel computes them once per T node, and S_eff once per S node
+ * (slut_nl_base_depth), and evaluates E_thin and B on its lane vector of r (SLUT_NL_THIN_X,
+ * SLUT_NL_THIN_OF_X, SLUT_NL_BASE_OF_THIN: the same expressions). */
+#define SLUT_NL_BASE_OF_THIN(floor_T, rise_T, thin) ((floor_T) + (rise_T) * (thin))
+SLUT_FN double slut_nl_base_depth(double T, double S) {
+    return (S > SLUT_INFINITE_ABOVE) ? T : S * (T / (S + T));
+}
 SLUT_FN double slut_nl_E_base_from(double floor_T, double rise_T, double T, double r, double S) {
-    double S_eff = (S > SLUT_INFINITE_ABOVE) ? T : S * (T / (S + T));
-    return floor_T + rise_T * slut_nl_E_thin(r, S_eff);
+    return SLUT_NL_BASE_OF_THIN(floor_T, rise_T, slut_nl_E_thin(r, slut_nl_base_depth(T, S)));
 }
 SLUT_FN double slut_nl_E_base(double T, double r, double S) {
     return slut_nl_E_base_from(exp(-T), -expm1(-T), T, r, S);
