@@ -218,6 +218,8 @@ SLUT_FN slut_nl_lanes slut_nl_layer_slope(double tau, slut_nl_lanes r) {
  *     In the boundary layer (τ ≲ r, T large) this rule sets the panels: ~2T/L panels of
  *     ~L r/(2T) — the mesh a panel variable u = t/(t + T r) would give (e^{−Tηu}, rate Tη),
  *     without a change of variable per lane, so lanes with different r share it.
+ * Where rule 1 for −r_pole is the shortest, the march may take the panel in the layer
+ * variable instead (slut_nl_layer_panel_length, below).
  * refine > 1 shrinks every panel (A → 1 + (A − 1)·refine, L → L/refine): an independent
  * finer mesh for self-checks. */
 /* The refinement that holds E to a relative tolerance eps (refine < 1: longer panels, fewer
