@@ -49,9 +49,21 @@ __kernel void nearlight_ln_E(__global double *out,
         slut_nl_E_sweep(T, g, S, n_S, r, SLUT_NL_MAX_LANES, E, refine);
         for (int i = 0; i < n_S; ++i) {
             double *E_i = &E[i * SLUT_NL_MAX_LANES];
-            if (S_count > 1)
-                for (int l = 0; l < lanes; ++l) E_i[l] /= slut_nl_E_base_from(floor_T, rise_T, T, r[l], S[i]);
-            slut_nl_lanes_store(log(slut_nl_lanes_load(E_i)), E_i);
+            slut_nl_lanes E_lanes = slut_nl_lanes_load(E_i);
+            if (S_count > 1) {
+                /* E/B, B = slut_nl_E_base_from: S_eff once, E_thin on the lane vector (its
+                 * expressions for 0 < S_eff < ∞; the scalar function's guards otherwise). */
+                double S_eff = slut_nl_base_depth(T, S[i]);
+                if (S_eff > 0.0 && S_eff <= SLUT_INFINITE_ABOVE) {
+                    slut_nl_lanes r_lanes = slut_nl_lanes_load(r);
+                    slut_nl_lanes x = SLUT_NL_THIN_X(r_lanes, S_eff);
+                    E_lanes /= SLUT_NL_BASE_OF_THIN(floor_T, rise_T, SLUT_NL_THIN_OF_X(x));
+                } else {
+                    for (int l = 0; l < lanes; ++l) E_i[l] /= slut_nl_E_base_from(floor_T, rise_T, T, r[l], S[i]);
+                    E_lanes = slut_nl_lanes_load(E_i);
+                }
+            }
+            slut_nl_lanes_store(log(E_lanes), E_i);
             for (int l = 0; l < lanes; ++l)
                 out[(((size_t)(iS0 + i) * r_count + (size_t)(ir0 + l)) * g_count + ig) * T_count + iT] = E_i[l];
         }

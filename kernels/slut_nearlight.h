@@ -132,7 +132,9 @@ SLUT_FN double slut_nl_H(double T, double g, double S) {
  *   SLUT_NL_LANES_SELECT(a, b, c)  b where the lane comparison c holds, else a (both evaluated);
  *   SLUT_NL_LANES_ANY(c)           whether c holds in some element;
  *   slut_nl_lanes_load             a block from SLUT_NL_LANE_WIDTH consecutive doubles;
- *   slut_nl_lanes_max / _min       the largest / smallest element.
+ *   slut_nl_lanes_max / _min       the largest / smallest element;
+ *   slut_nl_expm1_8                expm1 of 8 consecutive doubles (a double8 on the device:
+ *                                  the layer variable's node offsets, slut_nl_E_sweep).
  * Lane comparisons combine with & (a vector comparison is −1/0 per element, a scalar one 1/0:
  * never mix the two). */
 #if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
@@ -155,6 +157,7 @@ SLUT_FN double slut_nl_lanes_min(slut_nl_lanes v) {
     double2 c = fmin(b.lo, b.hi);
     return fmin(c.x, c.y);
 }
+SLUT_FN void slut_nl_expm1_8(const double *x, double *out) { vstore8(expm1(vload8(0, x)), 0, out); }
 #else
 #define SLUT_NL_LANE_WIDTH 1
 typedef double slut_nl_lanes;
@@ -165,6 +168,9 @@ SLUT_FN slut_nl_lanes slut_nl_lanes_load(const double *p) { return *p; }
 SLUT_FN void slut_nl_lanes_store(slut_nl_lanes v, double *p) { *p = v; }
 SLUT_FN double slut_nl_lanes_max(slut_nl_lanes v) { return v; }
 SLUT_FN double slut_nl_lanes_min(slut_nl_lanes v) { return v; }
+SLUT_FN void slut_nl_expm1_8(const double *x, double *out) {
+    for (int k = 0; k < 8; ++k) out[k] = expm1(x[k]);
+}
 #endif
 #define SLUT_NL_LANE_BLOCKS (SLUT_NL_MAX_LANES / SLUT_NL_LANE_WIDTH) /* blocks of a full group */
 
@@ -212,6 +218,8 @@ SLUT_FN slut_nl_lanes slut_nl_layer_slope(double tau, slut_nl_lanes r) {
  *     In the boundary layer (τ ≲ r, T large) this rule sets the panels: ~2T/L panels of
  *     ~L r/(2T) — the mesh a panel variable u = t/(t + T r) would give (e^{−Tηu}, rate Tη),
  *     without a change of variable per lane, so lanes with different r share it.
+ * Where rule 1 for −r_pole is the shortest, the march may take the panel in the layer
+ * variable instead (slut_nl_layer_panel_length, below).
  * refine > 1 shrinks every panel (A → 1 + (A − 1)·refine, L → L/refine): an independent
  * finer mesh for self-checks. */
 /* The refinement that holds E to a relative tolerance eps (refine < 1: longer panels, fewer
@@ -227,16 +235,58 @@ SLUT_FN double slut_nl_refine_for_tolerance(double eps) {
     return fmax(0.15, fmin(1.0, refine));
 }
 
-SLUT_FN double slut_nl_panel_length(double tau, double dl, double eta, double r_pole, double k_rate,
-                                    double T, double refine) {
-    double A = 1.0 + (SLUT_NL_ELLIPSE - 1.0) * refine;
-    double L = SLUT_NL_EFOLDS / (refine * T); /* e-folds per unit τ */
-    double h = 2.0 * (A * eta + dl) / (A * A - 1.0);
-    if (r_pole > 0.0 && r_pole <= 1e300) h = fmin(h, 2.0 * (tau + r_pole) / (A - 1.0));
+/* Rule 2 alone: the longest h with T h (2 + 2(η + h) k) ≤ efolds (e-folds of the panel). */
+SLUT_FN double slut_nl_decay_length(double eta, double k_rate, double T, double efolds) {
+    double L = efolds / T; /* e-folds per unit τ */
     /* h (B + 2kh) = L, B = 2 + 2ηk; the root written so that nothing overflows for r → 0
      * (k ~ 1/r): k/B ≤ 1/(2η). */
     double B = 2.0 + 2.0 * eta * k_rate;
-    return fmin(h, (2.0 * L / B) / (1.0 + sqrt(1.0 + (8.0 * L / B) * (k_rate / B))));
+    return (2.0 * L / B) / (1.0 + sqrt(1.0 + (8.0 * L / B) * (k_rate / B)));
+}
+
+/* *layer_bound = 1 when the ellipse rule of −r_pole sets the panel (where the layer variable
+ * may give a longer one: slut_nl_layer_panel_length). */
+SLUT_FN double slut_nl_panel_length(double tau, double dl, double eta, double r_pole, double k_rate,
+                                    double T, double refine, int *layer_bound) {
+    double A = 1.0 + (SLUT_NL_ELLIPSE - 1.0) * refine;
+    double h = 2.0 * (A * eta + dl) / (A * A - 1.0);
+    double h_decay = slut_nl_decay_length(eta, k_rate, T, SLUT_NL_EFOLDS / refine);
+    double h_layer = (r_pole > 0.0 && r_pole <= 1e300) ? 2.0 * (tau + r_pole) / (A - 1.0) : SLUT_HUGE_VAL;
+    *layer_bound = (h_layer < h && h_layer < h_decay);
+    return fmin(fmin(h, h_layer), h_decay);
+}
+
+/* The next panel [τ, τ + h] in the layer variable s = ln(1 + τ/c) (dτ = (c + τ) ds), c = r_pole;
+ * returns h (in τ; the panel in s is D = ln(1 + h/(c + τ))). Arguments as for
+ * slut_nl_panel_length, and the poles of 1/η² relative to −c: ln_pole = ln|c − g ± i√(1−g²)|,
+ * arg_pole = atan2(√(1 − g²), c − g) (they depend on c alone; the march keeps them per c).
+ * The march uses it where the ellipse rule of −c sets the panel in τ and this one is longer.
+ *
+ * Why: in τ the ellipse rule of the singularity at τ = −c lets panels grow only by
+ * 1 + 2/(A − 1) each (×4.2 at the default refine 0.63), ~ln(1/c)/1.4 panels from c to τ ~ 1.
+ * In s that singularity sits at s = −∞, and the others at τ = −r_j (r_j > c) at
+ * s_j = ln((r_j − c)/(c + τ)) + iπ (relative to the panel start): at height π whatever r_j is.
+ * Rules, in s relative to the panel start, each valid over the panel:
+ *  1. Bernstein ellipse (as slut_nl_panel_length): a singularity at x + iy needs
+ *     |s_p| + |s_p − D| ≥ A D, which solves to D ≤ 2(A|s_p| − x)/(A² − 1) (the sum minus A D
+ *     decreases in D). At y = π its minimum over x (at x = π/√(A² − 1), above the middle of
+ *     the panel) is D ≤ 2π/√(A² − 1) (3.6 at A = 2, 4.9 at refine 0.63: panels of ×37 … ×130
+ *     in c + τ), for every lane at once. The poles of 1/η² at τ = −g ± i√(1−g²) sit at
+ *     x = ln_pole − ln(c + τ), y = arg_pole. (Lanes with r < c do not matter, as in the τ
+ *     rules: their layer is < 1e-17 e-folds.)
+ *  2. Decay: the e-folds of the exponent over the panel, ∫|dφ/ds| ds = ∫|φ'| dτ, do not
+ *     depend on the variable: the τ rule's bound T h (2 + 2(η + h) k) holds, plus D e-folds of
+ *     the Jacobian c + τ(s) = (c + τ)e^s: h = slut_nl_decay_length(…, L − D_max) with D_max the
+ *     ellipse bound of 1.
+ * refine scales as in slut_nl_panel_length (A → 1 + (A − 1)·refine, L → L/refine).
+ * Measured (C++ sweep over the bench's tables, every node against refine 2.5): bench/README.md. */
+SLUT_FN double slut_nl_layer_panel_length(double tau, double eta, double c, double ln_pole, double arg_pole,
+                                          double k_rate, double T, double refine) {
+    double A = 1.0 + (SLUT_NL_ELLIPSE - 1.0) * refine, A2m1 = A * A - 1.0;
+    double ct = c + tau;
+    double x = ln_pole - log(ct), y = arg_pole;
+    double D_max = fmin(2.0 * 3.14159265358979323846 / sqrt(A2m1), 2.0 * (A * sqrt(x * x + y * y) - x) / A2m1);
+    return fmin(ct * expm1(D_max), slut_nl_decay_length(eta, k_rate, T, SLUT_NL_EFOLDS / refine - D_max));
 }
 
 /* E(T, g, r_j, S_i) for up to SLUT_NL_MAX_LANES values r_j sharing one panel mesh and up to
@@ -350,6 +400,7 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
     double d_end = tau_end + g;      /* δ at the last τ = S/T (S finite) */
     int next = first;                /* the next node the march reaches */
     int nodes = 0;
+    double pole_c = -1.0, ln_pole = 0.0, arg_pole = 0.0; /* slut_nl_layer_panel_length's pole terms at c = pole_c */
     for (int panel = 0; panel < SLUT_NL_MAX_PANELS; ++panel) {
         if (!carry_d && g < 0.0 && tau >= half_peak) { carry_d = 1; }
         double eta2 = dl * dl + sg2, eta = sqrt(eta2);
@@ -381,7 +432,22 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
             k_rate = fmax(k_rate, slut_nl_lanes_max(slut_nl_layer_slope(tau, rr[b])));
             r_pole = fmin(r_pole, slut_nl_lanes_min(matters));
         }
-        double h = slut_nl_panel_length(tau, dl, eta, r_pole, k_rate, T, refine);
+        int layer_bound;
+        double h = slut_nl_panel_length(tau, dl, eta, r_pole, k_rate, T, refine, &layer_bound);
+        /* Where the ellipse of −r_pole sets the panel, the layer variable s = ln(1 + τ/r_pole)
+         * if it gives a longer one (slut_nl_layer_panel_length); D = the panel in s. */
+        int in_s = 0;
+        double D = 0.0, ct = tau + r_pole;
+        if (layer_bound && !carry_d) {
+            if (r_pole != pole_c) { /* the poles of 1/η² relative to −r_pole (r_pole rarely changes) */
+                pole_c = r_pole;
+                double cg = r_pole - g;
+                ln_pole = 0.5 * log(cg * cg + sg2);
+                arg_pole = atan2(sg, cg);
+            }
+            double h_s = slut_nl_layer_panel_length(tau, eta, r_pole, ln_pole, arg_pole, k_rate, T, refine);
+            if (h_s > h) { in_s = 1; h = h_s; }
+        }
         SLUT_ASSERT(h > 0.0);
         if (!(h > 0.0)) break; /* cannot happen (every rule is > 0 for η > 0); never loop on it */
         /* The panel ends at the next node if it would cross it (a node at S/T > 1e300 counts
@@ -391,19 +457,46 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
         if (!(tau_node > 1e300)) {
             d_node = (next == stop - 1) ? d_end : tau_node + g;
             double remaining = carry_d ? d_node - dl : tau_node - tau;
-            if (h >= remaining) { h = fmax(remaining, 0.0); at_node = 1; } /* ≥ 0: the nodes ascend */
-        }
-        double half_len = 0.5 * h; /* not "half": a type name in OpenCL C */
-        for (int k = 0; k < 8; ++k) {
-            for (int side = -1; side <= 1; side += 2) {
-                double off = half_len + (double)side * half_len * slut_gl16_x[k];
-                double tn = carry_d ? (dl + off) - g : tau + off;
-                double dn = carry_d ? dl + off : tn + g;
-                double en2 = dn * dn + sg2, en = sqrt(en2);
-                double base = half_len * slut_gl16_w[k] * inv_H / en2;
-                for (b = 0; b < blocks; ++b) sum[b] += base * exp(-T * (tn + en * slut_nl_q(tn, rr[b])));
-                ++nodes;
+            if (h >= remaining) {
+                h = fmax(remaining, 0.0); /* ≥ 0: the nodes ascend */
+                at_node = 1;
             }
+        }
+        if (in_s) D = log1p(h / ct);
+        /* The 16 nodes' offsets from the panel start and weights: in τ, h/2 (1 ± x_k) and
+         * h/2 w_k; in s, o = D/2 (1 ∓ x_k), τ_n − τ = (c + τ)(e^o − 1), weights D/2 w_k (c + τ)e^o,
+         * e^o − 1 by expm1 on the half near the start (relative precision where τ_n is small,
+         * which the layer needs) and from it on the far half, (e^D − 1 − (e^o − 1))/e^o (no
+         * cancellation: e^D − 1 ≥ 2(e^o − 1) there). Filled in two whole loops: a select per
+         * node would evaluate the expm1 for every panel. */
+        double off[16], wt[16];
+        if (in_s) {
+            double em_D = expm1(D), o_near[8], em[8];
+            for (int k = 0; k < 8; ++k) o_near[k] = 0.5 * D * (1.0 - slut_gl16_x[k]);
+            slut_nl_expm1_8(o_near, em);
+            for (int k = 0; k < 8; ++k) {
+                double em_near = em[k];
+                double em_far = (em_D - em_near) / (1.0 + em_near);
+                off[2 * k] = ct * em_near;
+                wt[2 * k] = 0.5 * D * slut_gl16_w[k] * ct * (1.0 + em_near);
+                off[2 * k + 1] = ct * em_far;
+                wt[2 * k + 1] = 0.5 * D * slut_gl16_w[k] * ct * (1.0 + em_far);
+            }
+        } else {
+            double half_len = 0.5 * h; /* not "half": a type name in OpenCL C */
+            for (int k = 0; k < 8; ++k) {
+                off[2 * k] = half_len - half_len * slut_gl16_x[k];
+                off[2 * k + 1] = half_len + half_len * slut_gl16_x[k];
+                wt[2 * k] = wt[2 * k + 1] = half_len * slut_gl16_w[k];
+            }
+        }
+        for (int n = 0; n < 16; ++n) {
+            double tn = carry_d ? (dl + off[n]) - g : tau + off[n];
+            double dn = carry_d ? dl + off[n] : tn + g;
+            double en2 = dn * dn + sg2, en = sqrt(en2);
+            double base = wt[n] * inv_H / en2;
+            for (b = 0; b < blocks; ++b) sum[b] += base * exp(-T * (tn + en * slut_nl_q(tn, rr[b])));
+            ++nodes;
         }
         if (at_node) {
             /* Record every node at this depth (equal S values share it), then renormalise the
@@ -739,14 +832,19 @@ SLUT_FN double slut_distant_light_radiance(double sigma_s_per_m, double sigma_a_
  * averaged over the path, E ≈ (1 − e^{−x})/x, x = (1+c)S = S(1+r)/r. Limits: x → 0 gives 1
  * (also S = 0), S = ∞ or r = 0 (S > 0) gives 0 — the approximation is wrong for thick media
  * and as r → 0, as DESIGN says; it never returns NaN. */
+/* Its two steps for 0 < S < ∞ as expressions of variables r (≥ 0), S and x, written once for
+ * a scalar and for the table kernel's lane vector of r (OpenCL C's ?: selects per element
+ * where the condition is a lane comparison; S is a scalar): x = (1 + c)S (r = ∞: S, r = 0: ∞),
+ * then (1 − e^{−x})/x: 1 below SLUT_TINY, 1/x above 40 (e^{−x} < 5e-18: 1 − e^{−x} rounds to 1,
+ * the same value without expm1; also x = ∞: 0). */
+#define SLUT_NL_THIN_X(r, S) (((r) > SLUT_INFINITE_ABOVE) ? (S) : (S) * ((1.0 + (r)) / (r)))
+#define SLUT_NL_THIN_OF_X(x) (((x) < SLUT_TINY) ? 1.0 : (((x) > 40.0) ? 1.0 / (x) : -expm1(-(x)) / (x)))
 SLUT_FN double slut_nl_E_thin(double r, double S) {
     SLUT_ASSERT(r >= 0.0 && S >= 0.0);
     if (!(S > 0.0)) return 1.0;
     if (!(r > 0.0) || S > SLUT_INFINITE_ABOVE) return 0.0;
-    double x = (r > SLUT_INFINITE_ABOVE) ? S : S * ((1.0 + r) / r);
-    if (x < SLUT_TINY) return 1.0;
-    if (x > 40.0) return 1.0 / x; /* e^{−x} < 5e-18: 1 − e^{−x} rounds to 1 (the same value, no expm1) */
-    return -expm1(-x) / x;
+    double x = SLUT_NL_THIN_X(r, S);
+    return SLUT_NL_THIN_OF_X(x);
 }
 
 /* SLUT_SHADER_END */
@@ -775,10 +873,15 @@ SLUT_FN double slut_nl_N_thin(double T, double g, double r, double S) {
  * B ≥ e^{−T} > 0 for T ≤ 700; B = 1 at T = 0. */
 /* SLUT_SHADER_BEGIN (the value base: also the GLSL/HLSL snippets') */
 /* B from its factors that depend on T alone, floor_T = e^{−T} and rise_T = 1 − e^{−T}
- * (= −expm1(−T)): the table kernel computes them once per T node, not once per node. */
+ * (= −expm1(−T)): the table kernel computes them once per T node, and S_eff once per S node
+ * (slut_nl_base_depth), and evaluates E_thin and B on its lane vector of r (SLUT_NL_THIN_X,
+ * SLUT_NL_THIN_OF_X, SLUT_NL_BASE_OF_THIN: the same expressions). */
+#define SLUT_NL_BASE_OF_THIN(floor_T, rise_T, thin) ((floor_T) + (rise_T) * (thin))
+SLUT_FN double slut_nl_base_depth(double T, double S) {
+    return (S > SLUT_INFINITE_ABOVE) ? T : S * (T / (S + T));
+}
 SLUT_FN double slut_nl_E_base_from(double floor_T, double rise_T, double T, double r, double S) {
-    double S_eff = (S > SLUT_INFINITE_ABOVE) ? T : S * (T / (S + T));
-    return floor_T + rise_T * slut_nl_E_thin(r, S_eff);
+    return SLUT_NL_BASE_OF_THIN(floor_T, rise_T, slut_nl_E_thin(r, slut_nl_base_depth(T, S)));
 }
 SLUT_FN double slut_nl_E_base(double T, double r, double S) {
     return slut_nl_E_base_from(exp(-T), -expm1(-T), T, r, S);
