@@ -72,7 +72,9 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
     const size_t n = layout.node_count();
     cl::Program &program = device.program("nearlight_E.cl");
     cl::Kernel kernel(program, "nearlight_ln_E");
-    cl::Buffer out(device.context(), CL_MEM_WRITE_ONLY, n * sizeof(double));
+    // Output straight into the values (CL_MEM_USE_HOST_PTR, then a map): no copy.
+    std::vector<double> values(n);
+    cl::Buffer out(device.context(), CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR, n * sizeof(double), values.data());
     int arg = 0;
     kernel.setArg(arg++, out);
     std::vector<cl::Buffer> node_buffers; // T, g, r: each axis's nodes (slut_axis_node)
@@ -92,22 +94,28 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
     set_axis_args(kernel, &arg, finite_thickness ? layout.axes[3].map : thick);
     kernel.setArg(arg++, slut_nl_refine_for_tolerance(tolerance));
     const size_t groups = static_cast<size_t>((n_r + SLUT_NL_MAX_LANES - 1) / SLUT_NL_MAX_LANES);
-    // One work-item per (r group, g, T) sweeps every S node (slut_nl_E_sweep); launched in
-    // a few slices of g for progress on a terminal. One work-item per work-group: PoCL keeps
-    // the private arrays of every work-item of a group on one thread's stack (E alone is
-    // SLUT_NL_MAX_SWEEP × SLUT_NL_MAX_LANES doubles, 8 KiB: its automatic groups of ~2000
-    // overflowed it), and a work-item is a whole march, so the group overhead is negligible.
-    const int slices = std::min(n_g, 8), per_slice = (n_g + slices - 1) / slices;
+    // One work-item per (r group, g, T) sweeps every S node (slut_nl_E_sweep). One work-item
+    // per work-group: PoCL keeps the private arrays of every work-item of a group on one
+    // thread's stack (E alone is SLUT_NL_MAX_SWEEP × SLUT_NL_MAX_LANES doubles, 8 KiB: its
+    // automatic groups of ~2000 overflowed it), and a work-item is a whole march, so the group
+    // overhead is negligible. With a progress callback the launch is cut into a few slices of
+    // g (one report each); without one it is a single launch: each slice ends in a wait for
+    // its slowest work-items with a core idle.
+    const int slices = progress ? std::min(n_g, 8) : 1, per_slice = (n_g + slices - 1) / slices;
     for (int ig0 = 0; ig0 < n_g; ig0 += per_slice) {
         const int count = std::min(per_slice, n_g - ig0);
         device.queue().enqueueNDRangeKernel(kernel, cl::NDRange(0, static_cast<size_t>(ig0), 0),
                                             cl::NDRange(groups, static_cast<size_t>(count), static_cast<size_t>(n_T)),
                                             cl::NDRange(1, 1, 1));
+        if (!progress) continue;
         device.queue().finish();
-        if (progress) progress(static_cast<double>(ig0 + count) / n_g);
+        progress(static_cast<double>(ig0 + count) / n_g);
     }
-    std::vector<double> values(n);
-    device.queue().enqueueReadBuffer(out, CL_TRUE, 0, n * sizeof(double), values.data());
+    // Map (the values are in `values` once the kernels complete) and unmap queued behind
+    // them, one wait for both.
+    void *mapped = device.queue().enqueueMapBuffer(out, CL_FALSE, CL_MAP_READ, 0, n * sizeof(double));
+    device.queue().enqueueUnmapMemObject(out, mapped);
+    device.queue().finish();
     device.kernels_ran("nearlight_E.cl");
     return values;
 }
