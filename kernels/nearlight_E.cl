@@ -42,6 +42,9 @@ __kernel void nearlight_ln_E(__global double *out,
     double r[SLUT_NL_MAX_LANES], S[SLUT_NL_MAX_SWEEP], E[SLUT_NL_MAX_SWEEP * SLUT_NL_MAX_LANES];
     for (int l = 0; l < SLUT_NL_MAX_LANES; ++l) r[l] = r_nodes[min(ir0 + l, ir0 + lanes - 1)];
     double floor_T = exp(-T), rise_T = -expm1(-T); /* the value base's factors of T alone */
+    /* SLUT_NL_THIN_X is S times a factor of r alone (1 where r = ∞): that factor once here,
+     * then x = S_eff × it per S node (the same product, bit for bit). */
+    slut_nl_lanes thin_x_per_S = SLUT_NL_THIN_X(slut_nl_lanes_load(r), 1.0);
     for (int iS0 = 0; iS0 < S_count; iS0 += SLUT_NL_MAX_SWEEP) {
         int n_S = min(SLUT_NL_MAX_SWEEP, S_count - iS0);
         if (S_count == 1) S[0] = S_min;
@@ -55,9 +58,14 @@ __kernel void nearlight_ln_E(__global double *out,
                  * expressions for 0 < S_eff < ∞; the scalar function's guards otherwise). */
                 double S_eff = slut_nl_base_depth(T, S[i]);
                 if (S_eff > 0.0 && S_eff <= SLUT_INFINITE_ABOVE) {
-                    slut_nl_lanes r_lanes = slut_nl_lanes_load(r);
-                    slut_nl_lanes x = SLUT_NL_THIN_X(r_lanes, S_eff);
-                    E_lanes /= SLUT_NL_BASE_OF_THIN(floor_T, rise_T, SLUT_NL_THIN_OF_X(x));
+                    slut_nl_lanes x = S_eff * thin_x_per_S;
+                    /* SLUT_NL_THIN_OF_X needs its expm1 only for x in [SLUT_TINY, 40]; where
+                     * no lane is, its other two branches alone (the same values; a lane
+                     * vector's expm1 costs ~9 % of the table: bench/README.md). */
+                    slut_nl_lanes thin = any((x >= SLUT_TINY) & (x <= 40.0))
+                                             ? SLUT_NL_THIN_OF_X(x)
+                                             : select(1.0 / x, (slut_nl_lanes)(1.0), x < SLUT_TINY);
+                    E_lanes /= SLUT_NL_BASE_OF_THIN(floor_T, rise_T, thin);
                 } else {
                     for (int l = 0; l < lanes; ++l) E_i[l] /= slut_nl_E_base_from(floor_T, rise_T, T, r[l], S[i]);
                     E_lanes = slut_nl_lanes_load(E_i);
