@@ -23,6 +23,15 @@
 #error "the kernel takes one r group as one lane vector"
 #endif
 
+/* SLUT_NL_THIN_OF_X on 8 lanes: its expm1 is needed only for x in [SLUT_TINY, 40]; where no
+ * lane is, its other two branches alone (the same values). A lane vector's expm1 cost ~9 %
+ * of the 4-D table (bench/README.md); the r lanes ascend, so x = S_eff·(1 + r)/r descends
+ * along them and the half of small r often needs none. */
+double8 thin_of_x(double8 x) {
+    if (any((x >= SLUT_TINY) & (x <= 40.0))) return SLUT_NL_THIN_OF_X(x);
+    return select(1.0 / x, (double8)(1.0), x < SLUT_TINY);
+}
+
 __kernel void nearlight_ln_E(__global double *out,
                              __global const double *T_nodes, int T_count,
                              __global const double *g_nodes, int g_count,
@@ -59,12 +68,9 @@ __kernel void nearlight_ln_E(__global double *out,
                 double S_eff = slut_nl_base_depth(T, S[i]);
                 if (S_eff > 0.0 && S_eff <= SLUT_INFINITE_ABOVE) {
                     slut_nl_lanes x = S_eff * thin_x_per_S;
-                    /* SLUT_NL_THIN_OF_X needs its expm1 only for x in [SLUT_TINY, 40]; where
-                     * no lane is, its other two branches alone (the same values; a lane
-                     * vector's expm1 costs ~9 % of the table: bench/README.md). */
-                    slut_nl_lanes thin = any((x >= SLUT_TINY) & (x <= 40.0))
-                                             ? SLUT_NL_THIN_OF_X(x)
-                                             : select(1.0 / x, (slut_nl_lanes)(1.0), x < SLUT_TINY);
+                    slut_nl_lanes thin;
+                    thin.lo = thin_of_x(x.lo);
+                    thin.hi = thin_of_x(x.hi);
                     E_lanes /= SLUT_NL_BASE_OF_THIN(floor_T, rise_T, thin);
                 } else {
                     for (int l = 0; l < lanes; ++l) E_i[l] /= slut_nl_E_base_from(floor_T, rise_T, T, r[l], S[i]);
