@@ -169,7 +169,10 @@ void resolve_on_device(ScenePlan &plan, const std::string &selector, const std::
     provenance.command_line = command_line;
     provenance.device = device.info().describe();
     const Progress progress;
-    resolve_plan(plan, device, provenance, [&](const std::string &label, double f) { progress(label, f); });
+    // Off a terminal no progress is shown, and none is asked for (one kernel launch, not slices).
+    std::function<void(const std::string &, double)> on_progress;
+    if (progress.enabled) on_progress = [&](const std::string &label, double f) { progress(label, f); };
+    resolve_plan(plan, device, provenance, on_progress);
 }
 
 // ---------------------------------------------------------------- plan
