@@ -242,11 +242,6 @@ std::vector<double> taylor_moments(const std::vector<double> &tau, const std::ve
     return m;
 }
 
-template <class T> cl::Buffer input_buffer(Device &device, const std::vector<T> &v) {
-    return cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, v.size() * sizeof(T),
-                      const_cast<T *>(v.data()));
-}
-
 } // namespace
 
 std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout, double tolerance) {
@@ -326,10 +321,8 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
 
     cl::Program &program = device.program("airlight_F.cl");
     cl::Kernel kernel(program, "airlight_ln_gs_sweep");
-    // Output straight into the table's values (CL_MEM_USE_HOST_PTR, then a map): no copy.
     std::vector<double> values(static_cast<size_t>(au.count) * static_cast<size_t>(aw.count));
-    cl::Buffer out(device.context(), CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR, values.size() * sizeof(double),
-                   values.data());
+    const cl::Buffer out = output_buffer(device, values);
     const cl::Buffer b_u = input_buffer(device, u_rows), b_w = input_buffer(device, w_nodes),
                      b_delta = input_buffer(device, delta), b_set = input_buffer(device, item_set),
                      b_begin = input_buffer(device, node_begin), b_y = input_buffer(device, node_y),
@@ -344,11 +337,7 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
         kernel.setArg(arg++, *b);
     // Few, heavy work-items: a small local size spreads them over the cores (POCL-NOTES.md).
     device.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(static_cast<size_t>(items)), cl::NDRange(1));
-    // Map (the values are in `values` once it completes) and unmap queued behind the kernel,
-    // one wait for all three: each blocking call is a round trip to PoCL's worker threads.
-    void *mapped = device.queue().enqueueMapBuffer(out, CL_FALSE, CL_MAP_READ, 0, values.size() * sizeof(double));
-    device.queue().enqueueUnmapMemObject(out, mapped);
-    device.queue().finish();
+    wait_for_output(device, out, values);
     device.kernels_ran("airlight_F.cl");
     return values;
 }

@@ -72,9 +72,8 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
     const size_t n = layout.node_count();
     cl::Program &program = device.program("nearlight_E.cl");
     cl::Kernel kernel(program, "nearlight_ln_E");
-    // Output straight into the values (CL_MEM_USE_HOST_PTR, then a map): no copy.
     std::vector<double> values(n);
-    cl::Buffer out(device.context(), CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR, n * sizeof(double), values.data());
+    const cl::Buffer out = output_buffer(device, values);
     int arg = 0;
     kernel.setArg(arg++, out);
     std::vector<cl::Buffer> node_buffers; // T, g, r: each axis's nodes (slut_axis_node)
@@ -83,8 +82,7 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
         const slut_axis &map = layout.axes[a].map;
         std::vector<double> nodes(static_cast<size_t>(map.count));
         for (int i = 0; i < map.count; ++i) nodes[static_cast<size_t>(i)] = slut_axis_node(&map, i);
-        node_buffers.emplace_back(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                                  nodes.size() * sizeof(double), nodes.data());
+        node_buffers.push_back(input_buffer(device, nodes));
         kernel.setArg(arg++, node_buffers.back());
         kernel.setArg(arg++, map.count);
     }
@@ -111,11 +109,7 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
         device.queue().finish();
         progress(static_cast<double>(ig0 + count) / n_g);
     }
-    // Map (the values are in `values` once the kernels complete) and unmap queued behind
-    // them, one wait for both.
-    void *mapped = device.queue().enqueueMapBuffer(out, CL_FALSE, CL_MAP_READ, 0, n * sizeof(double));
-    device.queue().enqueueUnmapMemObject(out, mapped);
-    device.queue().finish();
+    wait_for_output(device, out, values);
     device.kernels_ran("nearlight_E.cl");
     return values;
 }

@@ -1,11 +1,13 @@
-// scatterlut generator — pieces every table generator uses: an axis from its fields, and
-// an axis passed to a kernel as (min, max, scale, warp, count).
+// scatterlut generator — pieces every table generator uses: an axis from its fields, an
+// axis passed to a kernel as (min, max, scale, warp, count), and the kernels' buffers.
 #pragma once
 
 #include <cstdio>
+#include <vector>
 
 #include <CL/opencl.hpp>
 
+#include "opencl_device.hpp"
 #include "scatterlut/table.hpp"
 
 namespace scatterlut {
@@ -40,6 +42,27 @@ inline void set_axis_args(cl::Kernel &kernel, int *arg, const slut_axis &a) {
     kernel.setArg((*arg)++, a.scale);
     kernel.setArg((*arg)++, a.warp);
     kernel.setArg((*arg)++, a.count);
+}
+
+// A read-only device copy of v (a kernel's input).
+template <class T> cl::Buffer input_buffer(Device &device, const std::vector<T> &v) {
+    return cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, v.size() * sizeof(T),
+                      const_cast<T *>(v.data()));
+}
+
+// A device buffer over `values` itself (CL_MEM_USE_HOST_PTR): the kernels write the table's
+// values in place, with no copy; they are there once wait_for_output returns.
+inline cl::Buffer output_buffer(Device &device, std::vector<double> &values) {
+    return cl::Buffer(device.context(), CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR, values.size() * sizeof(double),
+                      values.data());
+}
+
+// Queues a map and an unmap of `out` (an output_buffer over `values`) behind the kernels
+// and waits once for all: each blocking call would be a round trip to PoCL's worker threads.
+inline void wait_for_output(Device &device, const cl::Buffer &out, const std::vector<double> &values) {
+    void *mapped = device.queue().enqueueMapBuffer(out, CL_FALSE, CL_MAP_READ, 0, values.size() * sizeof(double));
+    device.queue().enqueueUnmapMemObject(out, mapped);
+    device.queue().finish();
 }
 
 } // namespace scatterlut
