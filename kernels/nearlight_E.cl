@@ -28,8 +28,7 @@
  * of the 4-D table (bench/README.md); the r lanes ascend, so x = S_eff·(1 + r)/r descends
  * along them and the half of small r often needs none. */
 double8 thin_of_x(double8 x) {
-    if (any((x >= SLUT_TINY) & (x <= 40.0))) return SLUT_NL_THIN_OF_X(x);
-    return select(1.0 / x, (double8)(1.0), x < SLUT_TINY);
+    return any(SLUT_NL_THIN_NEEDS_EXPM1(x)) ? SLUT_NL_THIN_OF_X(x) : SLUT_NL_THIN_OF_X_WITHOUT_EXPM1(x);
 }
 
 __kernel void nearlight_ln_E(__global double *out,

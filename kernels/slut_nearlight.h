@@ -838,7 +838,9 @@ SLUT_FN double slut_distant_light_radiance(double sigma_s_per_m, double sigma_a_
  * then (1 − e^{−x})/x: 1 below SLUT_TINY, 1/x above 40 (e^{−x} < 5e-18: 1 − e^{−x} rounds to 1,
  * the same value without expm1; also x = ∞: 0). */
 #define SLUT_NL_THIN_X(r, S) (((r) > SLUT_INFINITE_ABOVE) ? (S) : (S) * ((1.0 + (r)) / (r)))
-#define SLUT_NL_THIN_OF_X(x) (((x) < SLUT_TINY) ? 1.0 : (((x) > 40.0) ? 1.0 / (x) : -expm1(-(x)) / (x)))
+#define SLUT_NL_THIN_NEEDS_EXPM1(x) ((x) >= SLUT_TINY && (x) <= 40.0)
+#define SLUT_NL_THIN_OF_X_WITHOUT_EXPM1(x) (((x) < SLUT_TINY) ? 1.0 : 1.0 / (x)) /* x outside [TINY, 40] */
+#define SLUT_NL_THIN_OF_X(x) (SLUT_NL_THIN_NEEDS_EXPM1(x) ? -expm1(-(x)) / (x) : SLUT_NL_THIN_OF_X_WITHOUT_EXPM1(x))
 SLUT_FN double slut_nl_E_thin(double r, double S) {
     SLUT_ASSERT(r >= 0.0 && S >= 0.0);
     if (!(S > 0.0)) return 1.0;
