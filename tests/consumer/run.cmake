@@ -1,26 +1,52 @@
-# ctest driver: install the build into a fresh prefix, build the outside consumer
-# against it with find_package, generate a table with the installed binary, run.
-# -DBUILD_DIR=… -DSOURCE_DIR=… -DWORK_DIR=…
+# ctest driver: install the build into a fresh prefix, generate a table with the installed
+# binary, then move the prefix elsewhere (an install must not depend on where it was made)
+# and build the outside consumer against the moved prefix twice: with find_package and with
+# pkg-config. Both consumers load the table and compare with exact quadrature.
+# -DBUILD_DIR=… -DSOURCE_DIR=… -DWORK_DIR=… -DCXX=… (the C++ compiler for the pkg-config build)
 file(REMOVE_RECURSE "${WORK_DIR}")
 include("${SOURCE_DIR}/cmake/slut_step.cmake")
-step(${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WORK_DIR}/prefix")
-step(${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/consumer" -B "${WORK_DIR}/build" "-DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix")
+set(installed "${WORK_DIR}/prefix")
+set(moved "${WORK_DIR}/moved/prefix")
+step(${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${installed}")
+step("${installed}/bin/scatterlut" generate --out "${WORK_DIR}/tables" --format bin --n-u 128 --n-w 64)
+file(MAKE_DIRECTORY "${WORK_DIR}/moved")
+file(RENAME "${installed}" "${moved}")
+
+# find_package from the moved prefix.
+step(${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/consumer" -B "${WORK_DIR}/build" "-DCMAKE_PREFIX_PATH=${moved}")
 step(${CMAKE_COMMAND} --build "${WORK_DIR}/build")
-step("${WORK_DIR}/prefix/bin/scatterlut" generate --out "${WORK_DIR}/tables" --format bin --n-u 128 --n-w 64)
 step("${WORK_DIR}/build/consumer" "${WORK_DIR}/tables/airlight_F.slut")
+
 # The GPU snippets, generated at build time, are installed beside the library.
 foreach(snippet scatterlut_airlight.glsl scatterlut_airlight.hlsl scatterlut_nearlight.glsl scatterlut_nearlight.hlsl)
-  if(NOT EXISTS "${WORK_DIR}/prefix/share/scatterlut/shaders/${snippet}")
-    message(FATAL_ERROR "${snippet} is not installed in ${WORK_DIR}/prefix/share/scatterlut/shaders")
+  if(NOT EXISTS "${moved}/share/scatterlut/shaders/${snippet}")
+    message(FATAL_ERROR "${snippet} is not installed in ${moved}/share/scatterlut/shaders")
   endif()
 endforeach()
-# pkg-config sees the same library.
+
+# pkg-config from the moved prefix: the flags must name the moved prefix, never the old one.
 find_program(PKG_CONFIG pkg-config)
-if(PKG_CONFIG)
-  set(ENV{PKG_CONFIG_PATH} "${WORK_DIR}/prefix/lib/pkgconfig")
-  execute_process(COMMAND ${PKG_CONFIG} --exists scatterlut RESULT_VARIABLE rc)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "pkg-config does not find scatterlut in ${WORK_DIR}/prefix")
-  endif()
+if(NOT PKG_CONFIG)
+  message(FATAL_ERROR "pkg-config not found (Debian: pkg-config; `make run` installs it)")
 endif()
-message(STATUS "outside consumer built and ran against the installed prefix")
+file(GLOB_RECURSE pc_files "${moved}/*/scatterlut.pc")
+list(LENGTH pc_files pc_count)
+if(NOT pc_count EQUAL 1)
+  message(FATAL_ERROR "expected one scatterlut.pc under ${moved}, found: ${pc_files}")
+endif()
+get_filename_component(pc_dir "${pc_files}" DIRECTORY)
+set(ENV{PKG_CONFIG_PATH} "${pc_dir}")
+execute_process(COMMAND ${PKG_CONFIG} --static --cflags --libs scatterlut
+                RESULT_VARIABLE rc OUTPUT_VARIABLE pc_flags ERROR_VARIABLE pc_err OUTPUT_STRIP_TRAILING_WHITESPACE)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "pkg-config does not resolve scatterlut from ${pc_dir}: ${pc_err}")
+endif()
+string(FIND "${pc_flags}" "${installed}/" stale)
+string(FIND "${pc_flags}" "-I${moved}/" fresh)
+if(NOT stale EQUAL -1 OR fresh EQUAL -1)
+  message(FATAL_ERROR "pkg-config flags do not follow the moved prefix ${moved}: ${pc_flags}")
+endif()
+separate_arguments(pc_args UNIX_COMMAND "${pc_flags}")
+step(${CXX} -std=c++17 "${SOURCE_DIR}/tests/consumer/main.cpp" -o "${WORK_DIR}/consumer_pkgconfig" ${pc_args})
+step("${WORK_DIR}/consumer_pkgconfig" "${WORK_DIR}/tables/airlight_F.slut")
+message(STATUS "outside consumers (find_package, pkg-config) built and ran against a moved install")
