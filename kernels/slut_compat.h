@@ -6,7 +6,12 @@
  * runtime library. This header hides the few differences:
  *   - SLUT_FN marks a shared function (static inline in both languages);
  *   - SLUT_GLOBAL is OpenCL's __global address space, empty in C++;
- *   - SLUT_ASSERT vanishes on the device.
+ *   - SLUT_CHECK and SLUT_CHECK_{EQ,NE,LT,LE,GT,GE} stay on in every host build (release
+ *     included): a failed check prints the condition, both operands' values and file:line to
+ *     stderr and aborts. They guard invariants that matter at run time (launch shapes, sweep
+ *     bounds, preconditions of shared functions whose callers validate user input first).
+ *     SLUT_DCHECK* are the same in debug builds and vanish under NDEBUG: for hot loops.
+ *     All of them vanish on the device and in the shaders.
  * Rules for shared code: C99 syntax, outputs through pointers (no
  * references), no templates, no standard library beyond <math.h> functions,
  * double precision throughout.
@@ -30,19 +35,57 @@
 #  define SLUT_FN static inline
 #  define SLUT_GLOBAL __global
 #  define SLUT_CONSTANT __constant
-#  define SLUT_ASSERT(x) ((void)0)
+#  define SLUT_CHECK(c) ((void)0)
+#  define SLUT_CHECK_OP(a, op, b) ((void)0)
 #  define SLUT_HUGE_VAL ((double)INFINITY)
 #  define SLUT_ISFINITE(x) isfinite(x)
 #else
 #  include <math.h>
-#  include <assert.h>
+#  include <stdio.h>
+#  include <stdlib.h>
 #  define SLUT_FN static inline
 #  define SLUT_GLOBAL
 #  define SLUT_CONSTANT static const
-#  define SLUT_ASSERT(x) assert(x)
+/* Reports a failed check and aborts. Operands are printed as doubles (exact for the integers
+ * checked here, |n| < 2^53); a check without operands passes NULL names. */
+SLUT_FN void slut_check_failed(const char *file, int line, const char *condition, const char *a_text,
+                               double a, const char *b_text, double b) {
+    if (a_text)
+        fprintf(stderr, "scatterlut: check failed at %s:%d: %s (%s = %.17g, %s = %.17g)\n", file, line,
+                condition, a_text, a, b_text, b);
+    else
+        fprintf(stderr, "scatterlut: check failed at %s:%d: %s\n", file, line, condition);
+    fflush(stderr);
+    abort();
+}
+#  define SLUT_CHECK(c) ((c) ? (void)0 : slut_check_failed(__FILE__, __LINE__, #c, NULL, 0.0, NULL, 0.0))
+#  define SLUT_CHECK_OP(a, op, b)                                                                     \
+    do {                                                                                              \
+        const double slut_check_a_ = (double)(a), slut_check_b_ = (double)(b);                       \
+        if (!(slut_check_a_ op slut_check_b_))                                                        \
+            slut_check_failed(__FILE__, __LINE__, #a " " #op " " #b, #a, slut_check_a_, #b, slut_check_b_); \
+    } while (0)
 #  define SLUT_HUGE_VAL HUGE_VAL
 #  define SLUT_ISFINITE(x) isfinite(x)
 #endif
+
+#define SLUT_CHECK_EQ(a, b) SLUT_CHECK_OP(a, ==, b)
+#define SLUT_CHECK_NE(a, b) SLUT_CHECK_OP(a, !=, b)
+#define SLUT_CHECK_LT(a, b) SLUT_CHECK_OP(a, <, b)
+#define SLUT_CHECK_LE(a, b) SLUT_CHECK_OP(a, <=, b)
+#define SLUT_CHECK_GT(a, b) SLUT_CHECK_OP(a, >, b)
+#define SLUT_CHECK_GE(a, b) SLUT_CHECK_OP(a, >=, b)
+#if defined(NDEBUG) || defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
+#  define SLUT_DCHECK(c) ((void)0)
+#  define SLUT_DCHECK_OP(a, op, b) ((void)0)
+#else
+#  define SLUT_DCHECK(c) SLUT_CHECK(c)
+#  define SLUT_DCHECK_OP(a, op, b) SLUT_CHECK_OP(a, op, b)
+#endif
+#define SLUT_DCHECK_LT(a, b) SLUT_DCHECK_OP(a, <, b)
+#define SLUT_DCHECK_LE(a, b) SLUT_DCHECK_OP(a, <=, b)
+#define SLUT_DCHECK_GT(a, b) SLUT_DCHECK_OP(a, >, b)
+#define SLUT_DCHECK_GE(a, b) SLUT_DCHECK_OP(a, >=, b)
 
 #define SLUT_INT(x) ((int)(x))
 #define SLUT_DOUBLE(x) ((double)(x))

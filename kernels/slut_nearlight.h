@@ -71,10 +71,13 @@ SLUT_FN double slut_nl_inv_square_integral(double len, double hh2, double d, dou
 
 /* Range checks shared by the entry points: rounding at the edges is tolerated (g is clamped
  * to [−1, 1]), real violations (NaN, negative T, r or S, |g| > 1 beyond rounding) are
- * flagged by SLUT_ASSERT on the host and vanish on the device. */
+ * stop the host with SLUT_CHECK (callers validate user input first) and vanish on the device. */
 SLUT_FN double slut_nl_checked_g(double T, double g, double r, double S) {
-    SLUT_ASSERT(T >= 0.0 && r >= 0.0 && S >= 0.0);
-    SLUT_ASSERT(g >= -1.0 - 1e-12 && g <= 1.0 + 1e-12);
+    SLUT_CHECK_GE(T, 0.0);
+    SLUT_CHECK_GE(r, 0.0);
+    SLUT_CHECK_GE(S, 0.0);
+    SLUT_CHECK_GE(g, -1.0 - 1e-12);
+    SLUT_CHECK_LE(g, 1.0 + 1e-12);
     (void)T; (void)r; (void)S;
     return slut_clamp(g, -1.0, 1.0);
 }
@@ -351,8 +354,10 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
     slut_nl_lanes rr[SLUT_NL_LANE_BLOCKS], sum[SLUT_NL_LANE_BLOCKS];
     double r_padded[SLUT_NL_MAX_LANES];
     int i, j, b;
-    SLUT_ASSERT(lanes >= 1 && lanes <= SLUT_NL_MAX_LANES);
-    SLUT_ASSERT(n_S >= 1 && n_S <= SLUT_NL_MAX_SWEEP);
+    SLUT_CHECK_GE(lanes, 1);
+    SLUT_CHECK_LE(lanes, SLUT_NL_MAX_LANES);
+    SLUT_CHECK_GE(n_S, 1);
+    SLUT_CHECK_LE(n_S, SLUT_NL_MAX_SWEEP);
     if (lanes > SLUT_NL_MAX_LANES) lanes = SLUT_NL_MAX_LANES;
     if (n_S > SLUT_NL_MAX_SWEEP) n_S = SLUT_NL_MAX_SWEEP;
     g = slut_nl_checked_g(T, g, 0.0, S[n_S - 1]);
@@ -360,12 +365,12 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
     /* The nodes the march covers: first..stop−1 (ascending S: the special cases are the ends). */
     int first = 0, stop = n_S;
     for (i = 0; i < n_S; ++i) {
-        SLUT_ASSERT(i == 0 || S[i] >= S[i - 1]);
+        SLUT_CHECK(i == 0 || S[i] >= S[i - 1]); /* the sweep's S nodes ascend */
         double tau_i = (S[i] > 1e300 || !(T > 0.0)) ? SLUT_HUGE_VAL : S[i] / T;
         int through_light = (sg == 0.0 && g < 0.0 && S[i] >= T);
         if (!(tau_i > 0.0) || !(T > 0.0) || through_light) {
             for (j = 0; j < lanes; ++j) {
-                SLUT_ASSERT(r[j] >= 0.0);
+                SLUT_CHECK_GE(r[j], 0.0);
                 double *E = &E_out[i * lanes + j];
                 if (!(T > 0.0)) *E = 1.0;
                 else if (!(tau_i > 0.0)) *E = (r[j] > 0.0) ? 1.0 : exp(-T); /* S → 0 (S/T may underflow) */
@@ -388,7 +393,7 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
     int blocks = (lanes + SLUT_NL_LANE_WIDTH - 1) / SLUT_NL_LANE_WIDTH;
     for (j = 0; j < blocks * SLUT_NL_LANE_WIDTH; ++j) {
         double r_j = r[(j < lanes) ? j : lanes - 1];
-        SLUT_ASSERT(r_j >= 0.0);
+        SLUT_CHECK_GE(r_j, 0.0);
         r_padded[j] = (r_j < 1e300) ? r_j : SLUT_HUGE_VAL;
     }
     for (b = 0; b < blocks; ++b) {
@@ -448,7 +453,7 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
             double h_s = slut_nl_layer_panel_length(tau, eta, r_pole, ln_pole, arg_pole, k_rate, T, refine);
             if (h_s > h) { in_s = 1; h = h_s; }
         }
-        SLUT_ASSERT(h > 0.0);
+        SLUT_DCHECK_GT(h, 0.0); /* per panel: debug builds only */
         if (!(h > 0.0)) break; /* cannot happen (every rule is > 0 for η > 0); never loop on it */
         /* The panel ends at the next node if it would cross it (a node at S/T > 1e300 counts
          * as ∞: never reached, it takes the sum at the stop). */
@@ -718,7 +723,8 @@ SLUT_FN void slut_nl_params_from_geometry(const double *normal, const double *ey
     double mu_e = eye_dir[0] * normal[0] + eye_dir[1] * normal[1] + eye_dir[2] * normal[2];
     double n_dot_l = light_rel_m[0] * normal[0] + light_rel_m[1] * normal[1] + light_rel_m[2] * normal[2];
     double e_dot_l = light_rel_m[0] * eye_dir[0] + light_rel_m[1] * eye_dir[1] + light_rel_m[2] * eye_dir[2];
-    SLUT_ASSERT(sigma_t_per_m >= 0.0 && length_m >= 0.0);
+    SLUT_CHECK_GE(sigma_t_per_m, 0.0);
+    SLUT_CHECK_GE(length_m, 0.0);
     p->kind = SLUT_NL_OK;
     p->distance_m = l;
     p->mu_e = mu_e;
@@ -808,7 +814,8 @@ SLUT_FN double slut_refract_eye_dir(const double *normal, const double *eye_dir,
  * −expm1 for small exponents. Limits: r = 0 → 0; r = ∞ → 1 − e^{−S}; S = ∞ → r/(1+r);
  * S = 0 → 0. This is also the T → ∞ limit of T²·N(T, g, r, S). */
 SLUT_FN double slut_distant_light_factor(double r, double S) {
-    SLUT_ASSERT(r >= 0.0 && S >= 0.0);
+    SLUT_CHECK_GE(r, 0.0);
+    SLUT_CHECK_GE(S, 0.0);
     if (!(S > 0.0) || !(r > 0.0)) return 0.0;
     if (r > SLUT_INFINITE_ABOVE) return -expm1(-S);
     double frac = r / (1.0 + r);
@@ -842,7 +849,8 @@ SLUT_FN double slut_distant_light_radiance(double sigma_s_per_m, double sigma_a_
 #define SLUT_NL_THIN_OF_X_WITHOUT_EXPM1(x) (((x) < SLUT_TINY) ? 1.0 : 1.0 / (x)) /* x outside [TINY, 40] */
 #define SLUT_NL_THIN_OF_X(x) (SLUT_NL_THIN_NEEDS_EXPM1(x) ? -expm1(-(x)) / (x) : SLUT_NL_THIN_OF_X_WITHOUT_EXPM1(x))
 SLUT_FN double slut_nl_E_thin(double r, double S) {
-    SLUT_ASSERT(r >= 0.0 && S >= 0.0);
+    SLUT_CHECK_GE(r, 0.0);
+    SLUT_CHECK_GE(S, 0.0);
     if (!(S > 0.0)) return 1.0;
     if (!(r > 0.0) || S > SLUT_INFINITE_ABOVE) return 0.0;
     double x = SLUT_NL_THIN_X(r, S);

@@ -322,6 +322,13 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
     cl::Program &program = device.program("airlight_F.cl");
     cl::Kernel kernel(program, "airlight_ln_gs_sweep");
     std::vector<double> values(static_cast<size_t>(au.count) * static_cast<size_t>(aw.count));
+    // The launch shape the kernel indexes by: one work-item per kLanes rows, a rule set and
+    // its per-interval node ranges for each item.
+    SLUT_CHECK_GT(items, 0);
+    SLUT_CHECK_GE(u_rows.size(), static_cast<size_t>(kLanes) * static_cast<size_t>(items));
+    SLUT_CHECK_EQ(item_set.size(), static_cast<size_t>(items));
+    SLUT_CHECK_EQ(node_begin.size(), sets.size() * (tau.size() + 1));
+    SLUT_CHECK_EQ(node_y.size(), node_weight.size());
     const cl::Buffer out = output_buffer(device, values);
     const cl::Buffer b_u = input_buffer(device, u_rows), b_w = input_buffer(device, w_nodes),
                      b_delta = input_buffer(device, delta), b_set = input_buffer(device, item_set),

@@ -92,6 +92,10 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
     set_axis_args(kernel, &arg, finite_thickness ? layout.axes[3].map : thick);
     kernel.setArg(arg++, slut_nl_refine_for_tolerance(tolerance));
     const size_t groups = static_cast<size_t>((n_r + SLUT_NL_MAX_LANES - 1) / SLUT_NL_MAX_LANES);
+    // The launch covers every node once: r groups × g × T work-items, each sweeping the S axis.
+    SLUT_CHECK_GE(groups * SLUT_NL_MAX_LANES, static_cast<size_t>(n_r));
+    SLUT_CHECK_EQ(n, static_cast<size_t>(n_T) * n_g * n_r * (finite_thickness ? layout.axes[3].map.count : 1));
+    SLUT_CHECK_LE(finite_thickness ? layout.axes[3].map.count : 1, SLUT_NL_MAX_SWEEP);
     // One work-item per (r group, g, T) sweeps every S node (slut_nl_E_sweep). One work-item
     // per work-group: PoCL keeps the private arrays of every work-item of a group on one
     // thread's stack (E alone is SLUT_NL_MAX_SWEEP × SLUT_NL_MAX_LANES doubles, 8 KiB: its
