@@ -3,14 +3,20 @@
 BUILD ?= build
 OUT ?= out
 JOBS ?= $(shell nproc)
-CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
+# SCATTERLUT_REQUIRE_ALL_TESTS: `make run` installs every tool the suite uses, so a missing
+# one is a configure error here, never a silently skipped test.
+CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSCATTERLUT_REQUIRE_ALL_TESTS=ON
 
-# Everything a fresh Debian 12 (with git, make, g++, cmake) lacks.
-DEB_PACKAGES := cmake g++ make pkg-config \
+# Everything a minimal Debian 12 (debootstrap --variant=minbase, plus git, make, g++, cmake
+# and python3) lacks for the build and the whole test suite, installed with
+# --no-install-recommends: the OpenCL runtime (PoCL) and headers, the libraries, the
+# shader tools and Mesa's llvmpipe behind EGL (libopengl-dev: CMake's OpenGL::EGL needs
+# libOpenGL), clang's libFuzzer, and mpmath for the reference-value script.
+DEB_PACKAGES := cmake g++ make pkg-config python3 python3-mpmath \
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo \
   libopenexr-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev \
   libboost-math-dev libgtest-dev libbenchmark-dev \
-  glslang-tools spirv-cross libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri \
+  glslang-tools spirv-cross libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri \
   clang libclang-rt-14-dev zlib1g-dev
 
 .PHONY: all run test deps configure build clean

@@ -47,7 +47,7 @@ const std::string kSpirvCross = SLUT_SPIRV_CROSS;
 #define SLUT_SKIP_OR_FAIL(message)                                                         \
     do {                                                                                   \
         if (SLUT_REQUIRE_SHADER_TESTS) FAIL() << (message);                                \
-        GTEST_SKIP() << (message);                                                         \
+        GTEST_SKIP() << "skipped: " << (message);                                          \
     } while (0)
 
 inline std::string read_text(const std::string &path) {
