@@ -124,10 +124,11 @@ SLUT_FN double slut_nl_H(double T, double g, double S) {
 /* The lanes of a march (the r values sharing one panel mesh, slut_nl_E_sweep) in blocks of
  * SLUT_NL_LANE_WIDTH elements of type slut_nl_lanes: a double16 on the device (one block for
  * a full group), a double on the host. Why: per (node, lane) the sweep costs one divide and
- * one exp; PoCL does not vectorise a scalar loop over the lanes, and a scalar exp costs ~36
- * core cycles against ~3 per element of a vector exp (docs/POCL.md). The sweep is written once on slut_nl_lanes
- * with C operators and the builtins exp, fmin, fmax (overloaded for vectors in OpenCL C);
- * only these definitions differ between the languages:
+ * one exp; PoCL does not vectorise a scalar loop over the lanes, and in such a loop a scalar
+ * exp costs ~10× what a double8 or double16 exp costs per element (docs/POCL.md, measured on
+ * PoCL 3.1). The sweep is written once on slut_nl_lanes with C operators and the builtins
+ * exp, fmin, fmax (overloaded for vectors in OpenCL C); only these definitions differ
+ * between the languages:
  *   SLUT_NL_LANES_SPLAT(x)         every element x;
  *   SLUT_NL_LANES_SELECT(a, b, c)  b where the lane comparison c holds, else a (both evaluated);
  *   SLUT_NL_LANES_ANY(c)           whether c holds in some element;
