@@ -1,9 +1,9 @@
-// The per-cell baselines the generators are measured against (issue #7): Boost.Math
+// The per-cell baselines the generators are measured against: Boost.Math
 // gauss_kronrod<double, 15> on one thread, one table cell at a time, given the break
 // points it needs to be as accurate as the table. Every finite piece [a, b] is integrated
 // as ∫_0^1 (b − a) f(a + (b − a)x) dx: Boost compares the unscaled error estimate with
 // tol·|estimate|, so narrow pieces integrated directly recurse to max depth
-// (POCL-NOTES.md, "Boost.Math pitfall").
+// (docs/POCL.md, "Boost.Math pitfall").
 #pragma once
 
 #include <algorithm>

@@ -1,9 +1,9 @@
-// scatterlut benchmarks (issue #7): generation throughput on the OpenCL device against a
+// scatterlut benchmarks: generation throughput on the OpenCL device against a
 // per-cell Boost.Math baseline in the same run, sampler and radiance cost per call, and
 // the whole-process `scatterlut generate` with cold and warm kernel caches.
 //
 // Speed is only ever a ratio against a baseline measured in the same process, in
-// interleaved rounds (this VM drifts ~1.5× over minutes; POCL-NOTES.md): each benchmark
+// interleaved rounds (a shared machine's speed drifts between rounds; docs/POCL.md): each benchmark
 // iteration is one round that times the device and the baseline back to back, and the
 // counters report the median and the range of the per-round ratios. Accuracy of both sides
 // is reported next to the speed (counters *_max_rel), measured against an independent

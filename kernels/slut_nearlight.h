@@ -2,9 +2,9 @@
  *
  * Compiled as OpenCL C by the near-light table kernels and as C++ by the host (exact
  * evaluation, eval, validation), the tests and the runtime library (closed forms,
- * parameters from geometry). DESIGN.md §1.2 and §1.3.
+ * parameters from geometry). The physics and its conventions: docs/PHYSICS.md §1.2–§1.3.
  *
- * Geometry (DESIGN §1.2). A plane with outward unit normal n bounds the medium (below it).
+ * Geometry (docs/PHYSICS.md §1.2). A plane with outward unit normal n bounds the medium (below it).
  * The view ray enters at O and runs a length s inside; ω = unit vector from O towards the
  * viewer (so the ray inside is P(x) = O − x ω), μ_e = ω·n > 0. The light sits at
  * O + l ω_l, μ_l = ω_l·n, g = ω·ω_l. The light-to-point distance is h(x)² = x² + l² + 2 x l g
@@ -93,7 +93,7 @@ SLUT_FN double slut_nl_H_scaled(double g, double S_over_T) {
 /* SLUT_SHADER_END */
 
 /* H(T, g, S) = ∫_0^S ĥ^{−2} dt
- *            = atan2(S√(1−g²), T + S g)/(T√(1−g²))       (DESIGN §1.2, in angle-difference form)
+ *            = atan2(S√(1−g²), T + S g)/(T√(1−g²))       (docs/PHYSICS.md §1.2, angle-difference form)
  * Limits: S/(T(S+T)) at g = 1; S/(T(T−S)) at g = −1, S < T; +∞ at g = −1, S ≥ T;
  * acos(g)/(T√(1−g²)) at S = ∞; 0 at S = 0; +∞ at T = 0 (S > 0). No cancellation anywhere:
  * see slut_nl_inv_square_integral. S may be +∞ (anything above 1e300 counts as ∞). */
@@ -127,10 +127,11 @@ SLUT_FN double slut_nl_H(double T, double g, double S) {
 /* The lanes of a march (the r values sharing one panel mesh, slut_nl_E_sweep) in blocks of
  * SLUT_NL_LANE_WIDTH elements of type slut_nl_lanes: a double16 on the device (one block for
  * a full group), a double on the host. Why: per (node, lane) the sweep costs one divide and
- * one exp; PoCL does not vectorise a scalar loop over the lanes, and a scalar exp costs ~36
- * core cycles against ~3 per element of a vector exp (POCL-NOTES.md). The sweep is written once on slut_nl_lanes
- * with C operators and the builtins exp, fmin, fmax (overloaded for vectors in OpenCL C);
- * only these definitions differ between the languages:
+ * one exp; PoCL does not vectorise a scalar loop over the lanes, and in such a loop a scalar
+ * exp costs ~10× what a double8 or double16 exp costs per element (docs/POCL.md, measured on
+ * PoCL 3.1). The sweep is written once on slut_nl_lanes with C operators and the builtins
+ * exp, fmin, fmax (overloaded for vectors in OpenCL C); only these definitions differ
+ * between the languages:
  *   SLUT_NL_LANES_SPLAT(x)         every element x;
  *   SLUT_NL_LANES_SELECT(a, b, c)  b where the lane comparison c holds, else a (both evaluated);
  *   SLUT_NL_LANES_ANY(c)           whether c holds in some element;
@@ -330,7 +331,7 @@ SLUT_FN double slut_nl_layer_panel_length(double tau, double eta, double c, doub
  * T = 0: E = 1; g = −1 with S ≥ T (the ray runs through the light; N and H diverge): the
  * weight concentrates at t = T where ĥ = 0, so E = e^{−T}. In a sweep the first are a
  * prefix of the nodes and the last a suffix; the march covers the nodes between.
- * Citation: DESIGN.md §1.2; panel rules as in POCL-NOTES.md ("near-light integral"). */
+ * Citation: docs/PHYSICS.md §1.2 (the integral) and §2 (its layer and peak). */
 /* The sweep's stopping test at a panel start τ (see "Stopping" above): whether for every lane
  * the remainder bound a_j(τ)·min(rest, 1/(T(1 − q0) η_min²)·inv_H) is ≤ tail_eps × sum
  * so far; rest = the normalised ∫ η^{−2} up to the last node (or a lower bound of it: then a
@@ -551,7 +552,7 @@ SLUT_FN double slut_nl_E(double T, double g, double r, double S) {
     return E;
 }
 
-/* N(T, g, r, S) = E·H (DESIGN §1.2). +∞ where H diverges (T = 0, or g = −1 with S ≥ T). */
+/* N(T, g, r, S) = E·H (docs/PHYSICS.md §1.2). +∞ where H diverges (T = 0, or g = −1 with S ≥ T). */
 SLUT_FN double slut_nl_N(double T, double g, double r, double S) {
     double H = slut_nl_H(T, g, S);
     if (!(H > 0.0)) return 0.0;
@@ -705,7 +706,7 @@ typedef struct slut_nl_params {
     double mu_e, mu_l;
 } slut_nl_params;
 
-/* (T, g, r, S) from a geometry in physical units (DESIGN §1.2).
+/* (T, g, r, S) from a geometry in physical units (docs/PHYSICS.md §1.2).
  *   normal:       outward unit normal n of the surface (the medium is below);
  *   eye_dir:      unit vector ω from the entry point O towards the viewer (not into the medium);
  *   light_rel_m:  light position minus O, m;
@@ -713,7 +714,7 @@ typedef struct slut_nl_params {
  * T = σ_t |light_rel|, ω_l = light_rel/l, g = ω·ω_l, r = μ_l/μ_e, S = σ_t s.
  * Sign convention: ĥ² = t² + T² + 2tTg because the point at depth x is O − xω, so
  * P − light = −(x ω + l ω_l). A light in the plane (μ_l = 0, rounding tolerated down to
- * −1e-15) is r = 0 (its whole path runs inside, DESIGN's first special case); only a light
+ * −1e-15) is r = 0 (its whole path runs inside: the r = 0 case of docs/PHYSICS.md §1.2); only a light
  * strictly below the plane gives SLUT_NL_LIGHT_BELOW. */
 SLUT_FN void slut_nl_params_from_geometry(const double *normal, const double *eye_dir,
                                           const double *light_rel_m, double sigma_t_per_m,
@@ -788,7 +789,7 @@ SLUT_FN double slut_fresnel_transmittance(double cos_i, double cos_t, double eta
 }
 /* SLUT_SHADER_END */
 
-/* The eye ray refracted into the medium (DESIGN §1.3): ω = unit vector from O towards the
+/* The eye ray refracted into the medium (docs/PHYSICS.md §1.3): ω = unit vector from O towards the
  * viewer (outside), n the outward normal, eta = n_medium/n_outside > 0. Writes the unit
  * vector ω_t pointing from O back along the refracted ray (so the point at depth x is
  * O − x ω_t, the same convention as eye_dir) and returns cos θ_t = ω_t·n (≥ 0,
@@ -810,7 +811,7 @@ SLUT_FN double slut_refract_eye_dir(const double *normal, const double *eye_dir,
 /* ------------------------------------------------------------------ closed forms (no table) */
 
 /* Distant-light attenuation integral ∫_0^S e^{−(1+c)t} dt = (1 − e^{−(1+c)S})/(1+c), c = 1/r
- * (seed eq. 5; DESIGN §1.3). Written with r: 1/(1+c) = r/(1+r), (1+c)S = S(1+r)/r, and
+ * (Gath 2008 eq. 5; docs/PHYSICS.md §1.2–§1.3). Written with r: 1/(1+c) = r/(1+r), (1+c)S = S(1+r)/r, and
  * −expm1 for small exponents. Limits: r = 0 → 0; r = ∞ → 1 − e^{−S}; S = ∞ → r/(1+r);
  * S = 0 → 0. This is also the T → ∞ limit of T²·N(T, g, r, S). */
 SLUT_FN double slut_distant_light_factor(double r, double S) {
@@ -823,9 +824,9 @@ SLUT_FN double slut_distant_light_factor(double r, double S) {
     return frac * -expm1(-S / frac);
 }
 
-/* Distant light (sun over an ocean; seed eq. 5), W/(m²·sr):
+/* Distant light (sun over an ocean; Gath 2008 eq. 5), W/(m²·sr):
  *   L = Λ/(4π) · L_in · (1 − e^{−σ_t (1+c) s})/(1+c),  c = μ_e/μ_l,  Λ = σ_s/σ_t,
- * L_in the beam's irradiance at normal incidence (W/m²; DESIGN's L_in), μ_e = ω·n of the viewer,
+ * L_in the beam's irradiance at normal incidence (W/m²; docs/PHYSICS.md §1.3), μ_e = ω·n of the viewer,
  * μ_l = ω_l·n of the light (0 for a light at or below the horizon), s in m (+∞ = thick). */
 SLUT_FN double slut_distant_light_radiance(double sigma_s_per_m, double sigma_a_per_m, double L_in,
                                            double mu_e, double mu_l, double length_m) {
@@ -835,10 +836,10 @@ SLUT_FN double slut_distant_light_radiance(double sigma_s_per_m, double sigma_a_
     return (sigma_s_per_m / sigma_t) * SLUT_INV_4PI * L_in * slut_distant_light_factor(mu_l / mu_e, S);
 }
 
-/* Thin-medium approximation of E (seed §4.2; DESIGN §1.3): the distant-light attenuation
+/* Thin-medium approximation of E (Gath 2008 §4.2; docs/PHYSICS.md §1.3): the distant-light attenuation
  * averaged over the path, E ≈ (1 − e^{−x})/x, x = (1+c)S = S(1+r)/r. Limits: x → 0 gives 1
  * (also S = 0), S = ∞ or r = 0 (S > 0) gives 0 — the approximation is wrong for thick media
- * and as r → 0, as DESIGN says; it never returns NaN. */
+ * and as r → 0 (docs/PHYSICS.md §1.3); it never returns NaN. */
 /* Its two steps for 0 < S < ∞ as expressions of variables r (≥ 0), S and x, written once for
  * a scalar and for the table kernel's lane vector of r (OpenCL C's ?: selects per element
  * where the condition is a lane comparison; S is a scalar): x = (1 + c)S (r = ∞: S, r = 0: ∞),

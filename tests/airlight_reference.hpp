@@ -1,4 +1,4 @@
-// Independent CPU reference for the airlight quantities of DESIGN.md §1.1.
+// Independent CPU reference for the airlight quantities of docs/PHYSICS.md §1.1.
 //
 // Header-only, tests only. Deliberately uses NO scatterlut header and none of the
 // identities the library relies on: everything is plain adaptive Gauss–Kronrod
@@ -34,7 +34,7 @@
 //    Past x* the walk stops once the remainder bound is below 1e-18 of the sum.
 //  * Every finite panel [a, b] is integrated as ∫_0^1 (b−a) f(a + (b−a)x) dx: Boost's
 //    gauss_kronrod compares the unscaled error on [−1, 1] with tol·|estimate|, so a
-//    narrow panel integrated directly recurses to max depth (POCL-NOTES.md).
+//    narrow panel integrated directly recurses to max depth (docs/POCL.md, "Boost.Math pitfall").
 //    Per-panel tol 1e-14 (Boost's error floor is 2ε of the [−1, 1] value, so a tol
 //    below ~1e-15 would always recurse to max depth). |K61 − G30| overestimates the
 //    error of K61 by orders of magnitude on these smooth panels.

@@ -1,4 +1,4 @@
-// An independent CPU reference for the near-light integral (DESIGN.md §1.2), built on
+// An independent CPU reference for the near-light integral (docs/PHYSICS.md §1.2), built on
 // Boost.Math adaptive Gauss–Kronrod quadrature in long double. It shares no code with
 // kernels/slut_nearlight.h (which it must never include): different rule (61-point
 // Gauss–Kronrod, adaptive), different precision (x87 long double), break points placed by
@@ -12,7 +12,7 @@
 // peak when g → −1); 2^k for the e^{−t} decay. Each finite piece [a, b] is integrated as
 // ∫_0^1 (b − a) f(a + (b − a) x) dx: Boost's gauss_kronrod compares the error estimate of the
 // unscaled rule with tol·|estimate|, so unscaled narrow pieces recurse to max depth
-// (POCL-NOTES.md, "Boost.Math pitfall"). The tail [a, ∞) uses t = a + x/(1 − x).
+// (docs/POCL.md, "Boost.Math pitfall"). The tail [a, ∞) uses t = a + x/(1 − x).
 #pragma once
 
 #include <algorithm>

@@ -349,7 +349,7 @@ const scatterlut::AirlightTable &host_table() {
 
 } // namespace
 
-// The acceptance: table radiance within 0.1 % for γ ∈ [1e-3, π − 1e-6] wherever
+// The acceptance target: table radiance within 0.1 % for γ ∈ [1e-3, π − 1e-6] wherever
 // e^{−σ_t D} ≥ 1e-6, at the default resolution; finite and non-negative everywhere.
 TEST(AirlightTable, RadianceWithinTenthOfAPercentOverTheAcceptanceDomain) {
     const auto &table = host_table();

@@ -1,4 +1,4 @@
-// `scatterlut generate`'s files as a contract (issue "Table files as a contract"), through
+// `scatterlut generate`'s files as a contract, through
 // the executable: the default tables pass `validate` and a 1e-3 relative perturbation with a
 // consistent checksum fails it (exit 1); the same command twice writes byte-identical files
 // (what `make run` twice must give); a run interrupted by SIGINT or SIGKILL while it writes

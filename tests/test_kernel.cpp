@@ -14,7 +14,7 @@ extern "C" {
 #include "slut_airlight.h"
 }
 
-// Every node to ≤ 1e-9 relative (the bound); we expect ~1e-13.
+// Every node to ≤ 1e-9 relative (the airlight kernel's contract); we expect ~1e-13.
 TEST(AirlightKernel, EveryNodeMatchesBoostReference) {
     scatterlut::Device device("");
     scatterlut::AirlightPlan plan;

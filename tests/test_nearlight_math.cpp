@@ -1,8 +1,8 @@
 // Tests of kernels/slut_nearlight.h: the near-light integral N(T, g, r, S), its closed-form
 // part H, the mean attenuation E = N/H, the parameters from geometry and the closed forms
-// of DESIGN.md §1.2–§1.3. Each test names its reference and says why its tolerance.
+// of docs/PHYSICS.md §1.2–§1.3. Each test names its reference and says why its tolerance.
 //
-// The header claims ≤ 1e-10 relative for N and E everywhere (DESIGN's target for table
+// The header claims ≤ 1e-10 relative for N and E everywhere (the tables' contract at their
 // nodes); the measured errors are ~1e-14, so 1e-10 tolerances leave room for compiler and
 // libm differences without hiding a missed boundary layer or peak (those show up as 1e-3
 // to 1e+5 errors: N_ref's layer point gives 6e-13 instead of 4.17e-8 when missed).
@@ -184,7 +184,7 @@ TEST(NearLightMath, MatchesBoostReferenceOnCornersAndRandomPoints) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Reference: DESIGN §1.2 first special case. With r = 0 the whole light path is inside,
+// Reference: docs/PHYSICS.md §1.2, special case r = 0. With r = 0 the whole light path is inside,
 // k = h, and N is the airlight integral of §1.1 with cos γ = −g (γ = angle between the view
 // direction and the direction from the viewer to the light, d² = x² + D² − 2xD cos γ):
 //   ∫_0^s e^{−σ_t (x + d(x))}/d(x)² dx = σ_t · N(σ_t D, −cos γ, 0, σ_t s).
@@ -243,7 +243,7 @@ TEST(NearLightMath, ZeroRIsTheAirlightIntegral) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Reference: DESIGN §1.2 second special case (seed eq. 5). Removing the fall-off means
+// Reference: docs/PHYSICS.md §1.2, distant-light limit (Gath 2008 eq. 5). Removing the fall-off means
 // T²·N: for t = O(1) and T → ∞, 1/ĥ² → 1/T² and ĥ·t/(t + T r) → c t, c = 1/r, so
 //   T² N → ∫_0^S e^{−(1+c)t} dt = (1 − e^{−(1+c)S})/(1+c)   (slut_distant_light_factor).
 // First-order correction (expand ĥ = T + t g + t²(1−g²)/(2T), q = t/(Tr) − t²/(Tr)²):
@@ -469,7 +469,7 @@ TEST(NearLightMath, SweepMatchesOneMarchPerDepth) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Reference: limits stated in the header and DESIGN §1.2–§1.3. Never NaN, E ∈ [0, 1]
+// Reference: limits stated in the header and docs/PHYSICS.md §1.2–§1.3. Never NaN, E ∈ [0, 1]
 // everywhere and E ∈ (0, 1] wherever e^{−T} is representable; H and N finite or +∞;
 // the closed forms finite at S = ∞, r = 0, S → 0, r = ∞. Exact values where known.
 TEST(NearLightMath, LimitsNeverNaN) {
@@ -527,7 +527,7 @@ TEST(NearLightMath, LimitsNeverNaN) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Reference: the exact N (Boost-checked above) for the closed forms of DESIGN §1.3.
+// Reference: the exact N (Boost-checked above) for the closed forms of docs/PHYSICS.md §1.3.
 // The thin-medium approximation N ≈ H·(1 − e^{−(1+c)S})/((1+c)S) must be exact to first
 // order as S → 0 (both tend to H at r > 0: relative error O(S·ĥ/r)), and the distant-light
 // radiance must equal its defining integral Λ p L_in ∫_0^s e^{−σ_t(1+c)x} σ_t dx.
@@ -554,7 +554,7 @@ TEST(NearLightMath, ClosedFormsOfSection13) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Parameters from geometry: conventions and flags (DESIGN §1.2). Reference: hand-computed.
+// Parameters from geometry: conventions and flags (docs/PHYSICS.md §1.2). Reference: hand-computed.
 TEST(NearLightMath, ParamsFromGeometryConventions) {
     const double n[3] = {0, 0, 1};
     const double eye[3] = {0.6, 0, 0.8};          // μ_e = 0.8
@@ -615,7 +615,7 @@ TEST(NearLightMath, EvaluationCountsAtHardCorners) {
 // one group (log-spaced over a random range of up to 4 decades from 1e-6..1, as the table's
 // r axis; r = 0 in a fifth), a sweep over ascending S nodes (the first often inside the
 // layer: node breaks in the s region), at the tables' default refine (tolerance 1e-11) and
-// at refine 1, over random hard (T, g). Tolerance 1e-10: the tables' contract (issue 7);
+// at refine 1, over random hard (T, g). Tolerance 1e-10: the tables' contract;
 // measured 6.8e-12 (printed; refine 0.63 aims at 1e-11).
 TEST(NearLightMath, LayerVariableMeshHoldsTolerance) {
     std::mt19937_64 rng(20261201);

@@ -69,7 +69,7 @@ scatterlut::NearLightQuery query_of(const slut_test::NearLightRef &c) {
 } // namespace
 
 // Every node of a 3-D and a 4-D table against Boost Gauss–Kronrod with break points:
-// ≤ 1e-8 relative (the bound; we expect ~1e-14).
+// ≤ 1e-8 relative (the bound asked of the kernel; we expect ~1e-14).
 TEST(NearLightKernel, EveryNodeMatchesBoostReference) {
     for (bool finite : {false, true}) {
         const scatterlut::Table &t = small_table(finite);
@@ -97,7 +97,7 @@ TEST(NearLightKernel, EveryNodeMatchesBoostReference) {
         }
         std::printf("%s: %zu nodes, max rel err vs Boost %.2e\n", t.kind.c_str(), t.node_count(), worst);
         // The default integration tolerance 1e-11 (kNearLightIntegrationTolerance) measures
-        // ~1e-11; 1e-10 is the bound for the tables.
+        // ~1e-11; 1e-10 is the tables' contract.
         EXPECT_LE(t.accuracy.integration_max_rel, 1e-10);
     }
 }
@@ -109,7 +109,7 @@ TEST(NearLightKernel, EveryNodeMatchesBoostReference) {
 //  - Agreement: the C++ slut_nl_E_sweep with the kernel's r group and S list (the same panel
 //    mesh), ≤ 1e-13 relative at every node: both run the same rules; only the builtins'
 //    rounding differs (PoCL's vector exp and log against libm's, ~1 ulp per node).
-//  - Accuracy: ≤ 1e-10 (the bound) at every node against an independent finer mesh
+//  - Accuracy: ≤ 1e-10 (the tables' contract) at every node against an independent finer mesh
 //    (the C++ sweep at refine 2.5), and against the Boost reference where it claims 1e-15
 //    (T ≥ 1e-3).
 TEST(NearLightKernel, MatchesHostSweepAndReferenceAtHardCorners) {
@@ -225,7 +225,7 @@ TEST(NearLightRadiance, ExactAndTableAgainstPhysicalReference) {
     EXPECT_THROW(scatterlut::near_light_radiance_exact(below), std::invalid_argument);
 }
 
-// The default thick table samples E within 1 % wherever E ≥ 1e-6 (the target),
+// The default thick table samples E within 1 % wherever E ≥ 1e-6 (the default plans' target),
 // measured by the generator at 20000 random points against the shared quadrature (itself
 // checked against Boost above). Off-table points fall back to exact integration.
 TEST(NearLightTable, DefaultThickTableWithinOnePercent) {
@@ -243,8 +243,8 @@ TEST(NearLightTable, DefaultThickTableWithinOnePercent) {
                                  2.015009384261607074432191e-6L), 1e-8); // off-table: exact (N_ref.json)
 }
 
-// The default finite-thickness table samples E within 1 % wherever E ≥ 1e-6 (the issue's
-// acceptance), at the generator's 20000 random points (T, g, r at uniform unit coordinates,
+// The default finite-thickness table samples E within 1 % wherever E ≥ 1e-6 (the default
+// plans' target), at the generator's 20000 random points (T, g, r at uniform unit coordinates,
 // S log-uniform in [S_min, S_max]) and at 20000 hard-corner points (S at S_min and just
 // above, S_max, S ≈ −g·T where the far face cuts the 1/ĥ² peak; g = g_min and 1; r = 0,
 // 1e-12, r_max; T at both ends), against slut_nl_E (checked against Boost above, mpmath in

@@ -162,7 +162,7 @@ TEST(Report, ResolutionLadderBuysAccuracyAndThePlanHoldsTheScenesError) {
 }
 
 // The methods on the same queries: the table holds the scene's error; the thin-medium
-// closed form tends to 0 as S → ∞ (DESIGN §1.3), so on a thick medium it is off by far more.
+// closed form (Gath 2008 §4.2) tends to 0 as S → ∞ (docs/PHYSICS.md §1.3), so on a thick medium it is off by far more.
 TEST(Report, MethodsCompareTheTableWithTheClosedForms) {
     const auto rows = read_csv(candle_report() + "/near_light_E3_methods.csv");
     std::map<std::string, Row> m;
@@ -177,6 +177,9 @@ TEST(Report, MethodsCompareTheTableWithTheClosedForms) {
     const std::string md = read_file(candle_report() + "/report.md");
     EXPECT_NE(md.find("## near_light_E3"), std::string::npos);
     EXPECT_NE(md.find("candle_wax.toml"), std::string::npos) << "the report names the command that produced it";
+    // The closed forms name the paper they come from (docs/PHYSICS.md §1.3).
+    EXPECT_NE(md.find("| thin | thin-medium closed form, Gath 2008 §4.2 "), std::string::npos) << md;
+    EXPECT_NE(md.find("| distant | distant-light limit, Gath 2008 eq. 5 "), std::string::npos) << md;
 }
 
 TEST(Report, SceneWithoutTablesSaysSo) {

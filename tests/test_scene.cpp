@@ -51,7 +51,7 @@ nlohmann::json plan_json(const std::string &args) {
 }
 
 // ------------------------------------------------------------------ the examples' plans
-// The acceptance list: which tables each example scene calls for, exactly.
+// The acceptance list: which tables each example scene calls for, exactly.
 struct ExamplePlan {
     const char *file;
     std::set<std::string> kinds;
@@ -81,6 +81,8 @@ TEST(ScenePlan, ClosedFormAndEmptyScenesSaySo) {
     const nlohmann::json ocean = plan_json("--scene " + kScenes + "ocean_sun.toml");
     ASSERT_EQ(ocean.at("notes").size(), 1u);
     EXPECT_NE(ocean["notes"][0].get<std::string>().find("closed form"), std::string::npos) << ocean["notes"];
+    EXPECT_NE(ocean["notes"][0].get<std::string>().find("distant light, Gath 2008 eq. 5"), std::string::npos)
+        << ocean["notes"];
     const nlohmann::json empty = plan_json("--scene " + kScenes + "empty.toml");
     ASSERT_EQ(empty.at("notes").size(), 1u);
     EXPECT_NE(empty["notes"][0].get<std::string>().find("no medium"), std::string::npos) << empty["notes"];

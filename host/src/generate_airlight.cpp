@@ -342,7 +342,7 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
     kernel.setArg(arg++, aw.count);
     for (const cl::Buffer *b : {&b_u, &b_w, &b_delta, &b_set, &b_begin, &b_y, &b_weight, &b_series_u, &b_series_c, &b_moments})
         kernel.setArg(arg++, *b);
-    // Few, heavy work-items: a small local size spreads them over the cores (POCL-NOTES.md).
+    // Few, heavy work-items: a small local size spreads them over the cores (docs/POCL.md).
     device.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(static_cast<size_t>(items)), cl::NDRange(1));
     wait_for_output(device, out, values);
     device.kernels_ran("airlight_F.cl");

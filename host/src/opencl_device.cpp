@@ -63,9 +63,9 @@ void inline_includes(const std::string &name, std::set<std::string> &seen, std::
 }
 
 // PoCL reads POCL_AFFINITY when the platform is first queried: 1 pins its worker threads
-// to cores. Unpinned, sub-millisecond kernels ran at half speed on this VM
-// (POCL-NOTES.md; the airlight sweep at 257²: 1.1–1.3 ms → 0.65 ms). A value the user
-// set wins. Other drivers ignore the variable.
+// to cores, one source of variation less for sub-millisecond kernels (what it measured:
+// docs/POCL.md, "Pinned worker threads"). A value the user set wins. Other drivers ignore
+// the variable.
 void pin_pocl_threads() { ::setenv("POCL_AFFINITY", "1", 0); }
 
 DeviceInfo describe_device(const cl::Platform &platform, const cl::Device &device, int p, int d) {

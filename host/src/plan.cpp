@@ -331,7 +331,7 @@ ScenePlan derive_plan(const Scene &scene, Storage storage, const AirlightOverrid
             lit = true;
             if (l.type == LightType::Directional) {
                 plan.notes.push_back("medium '" + m.name + "' lit by directional light '" + l.name +
-                                     "': the closed form serves (distant light, DESIGN 1.3: L = albedo p E_in "
+                                     "': the closed form serves (distant light, Gath 2008 eq. 5: L = albedo p L_in "
                                      "(1 - exp(-sigma_t (1+c) s))/(1+c)); no table");
                 continue;
             }

@@ -1,5 +1,5 @@
-// scatterlut generator — the planner: from a scene to the tables it calls for (DESIGN §2,
-// docs/SCENES.md), with domains from the scene's ranges and resolutions chosen by
+// scatterlut generator — the planner: from a scene to the tables it calls for
+// (docs/SCENES.md), with domains from the scene's ranges and resolutions chosen by
 // measurement (generate a trial table, measure its sampled error, refine).
 #pragma once
 

@@ -1,5 +1,5 @@
 // scatterlut generator — a cache of compiled OpenCL program binaries, so that a second
-// `generate` does not pay the device compiler again (PoCL: ~1.5 s cold, POCL-NOTES.md),
+// `generate` does not pay the device compiler again (PoCL: seconds cold; docs/POCL.md),
 // even where the driver's own cache is unavailable or disabled.
 //
 // An entry is the program's CL_PROGRAM_BINARIES, saved after its kernels have run once

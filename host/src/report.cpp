@@ -329,9 +329,9 @@ std::vector<MethodRow> runtime_methods(const Table &table, const QuerySet &qs, i
                            [&](size_t k) { return near_light_radiance_exact(qs.near[k]); }});
         methods.push_back({{"table", "one sample of the planned E table (NearLightTable::radiance)", 0, {}, false},
                            [&](size_t k) { return near->radiance(qs.near[k]); }});
-        methods.push_back({{"thin", "thin-medium closed form, seed 4.2 (near_light_radiance_thin)", 0, {}, false},
+        methods.push_back({{"thin", "thin-medium closed form, Gath 2008 §4.2 (near_light_radiance_thin)", 0, {}, false},
                            [&](size_t k) { return near_light_radiance_thin(qs.near[k]); }});
-        methods.push_back({{"distant", "distant-light limit, seed eq. 5 (near_light_radiance_distant)", 0, {}, false},
+        methods.push_back({{"distant", "distant-light limit, Gath 2008 eq. 5 (near_light_radiance_distant)", 0, {}, false},
                            [&](size_t k) { return near_light_radiance_distant(qs.near[k]); }});
     }
     std::vector<std::function<void()>> jobs;
@@ -558,8 +558,8 @@ int run_report(const ReportOptions &opt, const std::string &command_line) {
         md += "\n### Runtime methods\n\n![runtime methods](" + kind + "_methods.svg)\n\n";
         md += "Error: relative to exact quadrature, over the radiance queries above.";
         if (is_airlight(t))
-            md += " The seed's thin-medium form (4.2) and distant-light limit (eq. 5) are near-light methods (a light "
-                  "outside the medium, DESIGN 1.3); for a viewer and a light inside the medium the table is the only "
+            md += " The thin-medium form (Gath 2008 §4.2) and the distant-light limit (Gath 2008 eq. 5) are near-light "
+                  "methods (a light outside the medium); for a viewer and a light inside the medium the table is the only "
                   "approximation.";
         md += "\n\n| method | what | ns/call | median | p90 | p99 | max |\n|---|---|---:|---:|---:|---:|---:|\n";
         for (const auto &r : methods) {

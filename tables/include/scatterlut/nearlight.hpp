@@ -1,5 +1,5 @@
 // scatterlut runtime — near light: a point light outside a medium bounded by a plane
-// (wax, marble, skin, a smoke slab), seen from outside. DESIGN.md §1.2 and
+// (wax, marble, skin, a smoke slab), seen from outside. docs/PHYSICS.md §1.2 and
 // kernels/slut_nearlight.h:
 //   L = σ_s/(4π) · I0 · σ_t · N(T, g, r, S),   N = H(T, g, S) · E(T, g, r, S)
 // with H in closed form and E ∈ (0, 1] the tabulated ĥ⁻²-weighted mean attenuation.
@@ -22,7 +22,7 @@ struct NearLightQuery {
     // Eye-side refraction: relative index η = n_medium/n_outside (1: none). With η ≠ 1 the
     // view ray is refracted into the medium and μ_e, g use the refracted direction; with
     // `fresnel` the radiance is multiplied by the unpolarised Fresnel transmittance of
-    // the exit (the light side is not refracted: DESIGN §1.2's light path is straight).
+    // the exit (the light side is not refracted: the light path of docs/PHYSICS.md §1.2 is straight).
     double eta = 1.0;
     bool fresnel = false;
 };
@@ -41,9 +41,9 @@ NearLightParams near_light_params(const NearLightQuery &q);
 
 // W/(m²·sr); 0 for a light below the surface plane; never NaN.
 double near_light_radiance_exact(const NearLightQuery &q);
-// Closed forms needing no table (DESIGN §1.3): the thin-medium approximation
-// N ≈ H·(1 − e^{−(1+c)S})/((1+c)S), c = 1/r, and the distant-light form with the light's
-// irradiance at O (I0/l²) as L_in.
+// Closed forms needing no table (docs/PHYSICS.md §1.3): the thin-medium approximation
+// N ≈ H·(1 − e^{−(1+c)S})/((1+c)S), c = 1/r (Gath 2008 §4.2), and the distant-light form
+// (Gath 2008 eq. 5) with the light's irradiance at O (I0/l²) as L_in.
 double near_light_radiance_thin(const NearLightQuery &q);
 double near_light_radiance_distant(const NearLightQuery &q);
 
