@@ -11,7 +11,7 @@ DEB_PACKAGES := cmake g++ make pkg-config \
   libopenexr-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev \
   libboost-math-dev libgtest-dev libbenchmark-dev \
   glslang-tools spirv-cross libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri \
-  clang libclang-rt-14-dev zlib1g-dev
+  clang libclang-rt-14-dev zlib1g-dev python3 python3-mpmath
 
 .PHONY: all run test deps configure build clean
 
