@@ -1,4 +1,5 @@
-// Loads the 30-digit mpmath references of ../shared/reference (see its README.md).
+// Loads the 30-digit mpmath references of tests/reference (SLUT_REFERENCE_DIR; conventions
+// and how they were computed in tests/reference/README.md).
 // Values are decimal strings; they are parsed as long double so a test can state
 // its own tolerance without the loader adding error. A missing or malformed file
 // fails the calling test with a clear message (never an empty, silently passing list).

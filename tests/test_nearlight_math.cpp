@@ -56,7 +56,7 @@ int nodes_of(double T, double g, double r, double S) {
 } // namespace
 
 // ---------------------------------------------------------------------------------------
-// Reference: N_ref.json, mpmath at 30 digits (../shared/reference/README.md).
+// Reference: N_ref.json, mpmath at 30 digits (tests/reference/README.md).
 // Tolerance: H is a closed form (angle-difference atan2 form, no cancellation): 1e-14.
 // N and E: the header's contract, 1e-10 (see the file comment); the brief asks 1e-9.
 TEST(NearLightMath, MatchesMpmathReferencePoints) {
@@ -104,7 +104,7 @@ TEST(NearLightMath, BoostReferenceMatchesMpmath) {
 // physical units, not through N), through slut_nl_params_from_geometry:
 //   L = σ_s/(4π) · I0 · σ_t · N(T, g, r, S).
 // This pins the conventions (eye_dir towards the viewer, light_pos relative to the entry
-// point, g = ω·ω_l, r = μ_l/μ_e). Tolerance 1e-8 (brief); the reference has 20 digits.
+// point, g = ω·ω_l, r = μ_l/μ_e). Tolerance 1e-8 (brief); the reference has 25 digits.
 TEST(NearLightMath, PhysicalReferenceThroughGeometry) {
     const auto refs = slut_test::load_near_light_refs();
     Worst w;
