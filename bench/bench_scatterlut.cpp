@@ -306,8 +306,7 @@ BENCHMARK(BM_NearLightE)->Arg(3)->Arg(4);
 // Arg 0: all of them; 1: only those one θ-panel covers (slut_airlight_theta_fits_one_panel:
 // no table sample); 2: only the others (two table samples, or the panel rule where the two
 // ends' terms would cancel). The per-path costs say where the time goes.
-void BM_AirlightRadiance(benchmark::State &state) {
-    const scatterlut::AirlightTable table(default_airlight_table());
+std::vector<scatterlut::AirlightQuery> airlight_bench_queries(int which) {
     std::mt19937_64 rng(9);
     std::uniform_real_distribution<double> unit(0, 1);
     std::vector<scatterlut::AirlightQuery> qs;
@@ -319,21 +318,59 @@ void BM_AirlightRadiance(benchmark::State &state) {
         q.distance_m = std::pow(10.0, -3.0 + 4.0 * unit(rng)) / 0.6;
         q.gamma_rad = 1e-3 + (M_PI - 2e-3) * unit(rng);
         q.length_m = q.distance_m * std::pow(10.0, -2.0 + 3.0 * unit(rng));
-        if (state.range(0) != 0) {
+        if (which != 0) {
             slut_airlight_geometry g;
             slut_airlight_setup(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
                                 std::sin(q.gamma_rad), std::cos(q.gamma_rad), q.length_m, &g);
-            if ((state.range(0) == 1) != (slut_airlight_theta_fits_one_panel(&g) != 0)) continue;
+            if ((which == 1) != (slut_airlight_theta_fits_one_panel(&g) != 0)) continue;
         }
         qs.push_back(q);
     }
+    return qs;
+}
+
+// Counters median_rel and max_rel: the relative error of `eval` against airlight_radiance_exact
+// on the queries (after the timed loop).
+template <class Eval>
+void add_airlight_error_counters(benchmark::State &state, const std::vector<scatterlut::AirlightQuery> &qs, Eval eval) {
+    std::vector<double> err;
+    for (const auto &q : qs) err.push_back(std::fabs(eval(q) / scatterlut::airlight_radiance_exact(q) - 1.0));
+    std::sort(err.begin(), err.end());
+    state.counters["median_rel"] = err[err.size() / 2];
+    state.counters["max_rel"] = err.back();
+}
+
+void BM_AirlightRadiance(benchmark::State &state) {
+    const scatterlut::AirlightTable table(default_airlight_table());
+    const std::vector<scatterlut::AirlightQuery> qs = airlight_bench_queries(static_cast<int>(state.range(0)));
     size_t k = 0;
     for (auto _ : state) {
         benchmark::DoNotOptimize(table.radiance(qs[k]));
         k = (k + 1) % kPoints;
     }
+    add_airlight_error_counters(state, qs, [&table](const scatterlut::AirlightQuery &q) { return table.radiance(q); });
 }
 BENCHMARK(BM_AirlightRadiance)->Arg(0)->Arg(1)->Arg(2);
+
+// The closed forms engines use instead of the table (Macklin 2010), on BM_AirlightRadiance/0's
+// geometries: /0 without extinction, /1 times e^{−σ_t D}. Their error against the exact
+// radiance on these geometries is in the counters (median and max relative error), beside
+// the table's (BM_AirlightRadiance's counters).
+void BM_AirlightClosedForm(benchmark::State &state) {
+    const std::vector<scatterlut::AirlightQuery> qs = airlight_bench_queries(0);
+    const bool attenuated = state.range(0) == 1;
+    auto eval = [attenuated](const scatterlut::AirlightQuery &q) {
+        return attenuated ? scatterlut::airlight_radiance_no_extinction_attenuated(q)
+                          : scatterlut::airlight_radiance_no_extinction(q);
+    };
+    size_t k = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(eval(qs[k]));
+        k = (k + 1) % kPoints;
+    }
+    add_airlight_error_counters(state, qs, eval);
+}
+BENCHMARK(BM_AirlightClosedForm)->Arg(0)->Arg(1);
 
 // Near-light geometries: light 0.1–10 m from the entry point above the plane, view
 // directions over the upper hemisphere, thick (3-D table) or slabs of 1 mm – 10 m (4-D).

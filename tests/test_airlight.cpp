@@ -252,6 +252,83 @@ TEST(AirlightRadiance, LimitsAreFiniteAndCorrect) {
     EXPECT_THROW(scatterlut::airlight_radiance_exact({0.1, 0.1, 1.0, 2.0, std::nan(""), 3.0}), std::invalid_argument);
 }
 
+// The closed forms engines use (Macklin 2010; airlight_radiance_no_extinction and its
+// × e^{−σ_t D} variant). Their limits in closed form, independent of the implementation:
+//  γ = π/2, s = ∞: ∫_0^∞ dx/(x² + D²) = π/(2D);  γ = π: s/(D(D + s));
+//  γ = 0, s < D: s/(D(D − s)), continuous from γ > 0;  γ = 0, s ≥ D: +inf (never NaN);
+//  γ = 0, s = ∞: +inf;  γ = π, s = ∞: 1/D;  s = 0, σ_s = 0, I0 = 0: 0.
+TEST(AirlightClosedForm, LimitsAreFiniteAndCorrect) {
+    const double p = 1.0 / (4 * kPi), inf = std::numeric_limits<double>::infinity();
+    const double ss = 0.3, sa = 0.1, I = 2.0;
+    auto no_ext = [&](double D, double gamma, double s) {
+        return scatterlut::airlight_radiance_no_extinction({ss, sa, I, D, gamma, s});
+    };
+    auto attenuated = [&](double D, double gamma, double s) {
+        return scatterlut::airlight_radiance_no_extinction_attenuated({ss, sa, I, D, gamma, s});
+    };
+    const double k = ss * p * I;
+    EXPECT_LE(rel_err(no_ext(3.0, kPi / 2, inf), k * kPi / 6.0), 1e-15);
+    EXPECT_LE(rel_err(no_ext(3.0, kPi, 5.0), k * 5.0 / (3.0 * 8.0)), 1e-15);
+    EXPECT_LE(rel_err(no_ext(3.0, kPi - 1e-9, 5.0), k * 5.0 / (3.0 * 8.0)), 1e-15);
+    EXPECT_LE(rel_err(no_ext(3.0, kPi, inf), k / 3.0), 1e-15);
+    EXPECT_LE(rel_err(no_ext(5.0, 0.0, 2.0), k * 2.0 / (5.0 * 3.0)), 1e-15);
+    EXPECT_LE(rel_err(no_ext(5.0, 1e-12, 2.0), k * 2.0 / (5.0 * 3.0)), 1e-12);
+    EXPECT_LE(rel_err(no_ext(5.0, 1e-300, 2.0), k * 2.0 / (5.0 * 3.0)), 1e-15);
+    EXPECT_TRUE(std::isinf(no_ext(5.0, 0.0, 5.0)));
+    EXPECT_TRUE(std::isinf(no_ext(5.0, 0.0, 6.0)));
+    EXPECT_TRUE(std::isinf(no_ext(5.0, 0.0, inf)));
+    EXPECT_TRUE(std::isinf(attenuated(5.0, 0.0, 6.0)));
+    EXPECT_TRUE(std::isinf(scatterlut::airlight_radiance_no_extinction_attenuated({500.0, 500.0, 1.0, 5.0, 0.0, 6.0})));
+    // Just off the axis through the light: finite, large, and the angle form's value.
+    for (double gamma : {1e-6, 1e-12, 1e-200}) {
+        const double D = 5.0, s = 6.0, h = D * std::sin(gamma);
+        const double want = k * (kPi - std::atan(s * h / (D * (s - D * std::cos(gamma))))) / h;
+        const double got = no_ext(D, gamma, s);
+        EXPECT_TRUE(std::isfinite(got)) << gamma;
+        EXPECT_LE(rel_err(got, want), 1e-13) << gamma;
+    }
+    // The subtended angle Δφ/h at a generic geometry, both sides of den = 0 (Δφ = π/2).
+    for (double s : {1.0, 3.0 / std::cos(1.1) - 1e-9, 3.0 / std::cos(1.1), 3.0 / std::cos(1.1) + 1e-9, 20.0}) {
+        const double D = 3.0, gamma = 1.1;
+        const double want = k * std::atan2(s * D * std::sin(gamma), D * D - s * D * std::cos(gamma)) / (D * std::sin(gamma));
+        EXPECT_LE(rel_err(no_ext(D, gamma, s), want), 1e-14) << s;
+    }
+    EXPECT_EQ(no_ext(3.0, 1.0, 0.0), 0.0);
+    EXPECT_EQ(scatterlut::airlight_radiance_no_extinction({0.0, 0.1, 1.0, 5.0, 0.0, 6.0}), 0.0);
+    EXPECT_EQ(scatterlut::airlight_radiance_no_extinction_attenuated({0.3, 0.1, 0.0, 5.0, 0.0, 6.0}), 0.0);
+    EXPECT_LE(rel_err(attenuated(3.0, kPi, 5.0), k * 5.0 / 24.0 * std::exp(-0.4 * 3.0)), 1e-15);
+    EXPECT_THROW(scatterlut::airlight_radiance_no_extinction({-1.0, 0.1, 1.0, 2.0, 1.0, 3.0}), std::invalid_argument);
+    EXPECT_THROW(scatterlut::airlight_radiance_no_extinction_attenuated({0.1, 0.1, 1.0, 0.0, 1.0, 3.0}),
+                 std::invalid_argument);
+}
+
+// Against the exact radiance on random geometries: L_0·e^{−σ_t(2s + D)} ≤ L ≤ L_0·e^{−σ_t D}
+// ≤ L_0 (D ≤ x + d(x) ≤ 2x + D), so as σ_t → 0 both closed forms agree with exact to
+// σ_t·(2s + D); at σ_t = 1e-12 /m that is ≤ 1e-9 here. With real fog they are far off.
+TEST(AirlightClosedForm, BracketsExactAndAgreesAsExtinctionVanishes) {
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int n = 0; n < 2000; ++n) {
+        const double D = std::pow(10.0, -1 + 3 * unit(rng)), gamma = 1e-4 + (kPi - 2e-4) * unit(rng);
+        const double s = D * std::pow(10.0, -3 + 4 * unit(rng));
+        for (double sigma_t : {1e-12, 1e-3, 0.05, 1.0}) {
+            const scatterlut::AirlightQuery q{0.8 * sigma_t, 0.2 * sigma_t, 1.5, D, gamma, s};
+            const double exact = scatterlut::airlight_radiance_exact(q);
+            const double L0 = scatterlut::airlight_radiance_no_extinction(q);
+            const double La = scatterlut::airlight_radiance_no_extinction_attenuated(q);
+            if (!std::isfinite(exact)) continue;
+            const double slack = 1e-12; // the exact quadrature's ~1e-13 and the closed form's rounding
+            EXPECT_LE(exact, La * (1 + slack)) << "D=" << D << " gamma=" << gamma << " s=" << s;
+            EXPECT_LE(La, L0 * (1 + slack));
+            EXPECT_GE(exact, L0 * std::exp(-sigma_t * (2 * s + D)) * (1 - slack));
+            if (sigma_t == 1e-12) {
+                EXPECT_LE(rel_err(L0, exact), sigma_t * (2 * s + D) + slack);
+                EXPECT_LE(rel_err(La, exact), sigma_t * (2 * s + D) + slack);
+            }
+        }
+    }
+}
+
 // An infinite ray equals the limit of long finite ones.
 TEST(AirlightRadiance, InfiniteRayIsTheLimitOfLongRays) {
     scatterlut::AirlightQuery q{0.2, 0.05, 1.0, 4.0, 2.0, std::numeric_limits<double>::infinity()};

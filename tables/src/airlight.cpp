@@ -86,6 +86,33 @@ double airlight_radiance_exact(const AirlightQuery &q) {
     return slut_airlight_exact(&g);
 }
 
+namespace {
+// sin γ and cos γ from the half angle (slut_sincos_half_angle: no libm call; cos γ as
+// (cos − sin)(cos + sin) of γ/2, no cancellation near γ = π/2).
+void sincos_gamma(const AirlightQuery &q, double *sin_gamma, double *cos_gamma) {
+    check_airlight_query(q);
+    const double half = std::fmin(0.5 * q.gamma_rad, SLUT_PIO2_HI);
+    double sin_half, cos_half;
+    slut_sincos_half_angle(half, &sin_half, &cos_half);
+    *sin_gamma = 2.0 * sin_half * cos_half;
+    *cos_gamma = (cos_half - sin_half) * (cos_half + sin_half);
+}
+} // namespace
+
+double airlight_radiance_no_extinction(const AirlightQuery &q) {
+    double sin_gamma, cos_gamma;
+    sincos_gamma(q, &sin_gamma, &cos_gamma);
+    return slut_airlight_no_extinction(q.sigma_s_per_m, q.intensity_W_per_sr, q.distance_m, sin_gamma, cos_gamma,
+                                       q.length_m);
+}
+
+double airlight_radiance_no_extinction_attenuated(const AirlightQuery &q) {
+    double sin_gamma, cos_gamma;
+    sincos_gamma(q, &sin_gamma, &cos_gamma);
+    return slut_airlight_no_extinction_attenuated(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr,
+                                                  q.distance_m, sin_gamma, cos_gamma, q.length_m);
+}
+
 AirlightTable::AirlightTable(Table table) : table_(std::move(table)) {
     require(table_.kind == kKindAirlightF, "not an airlight F table (kind '" + table_.kind + "')");
     require(table_.quantity_version == kAirlightFQuantityVersion,

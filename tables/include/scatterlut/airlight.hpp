@@ -35,6 +35,15 @@ AirlightQuery airlight_query_from_points(const double viewer_m[3], const double 
 // never negative. Throws std::invalid_argument for negative or NaN inputs.
 double airlight_radiance_exact(const AirlightQuery &q); // quadrature, ~1e-13 relative
 
+// The closed forms engines use instead of a table (Macklin 2010; kernels/slut_airlight.h):
+// the radiance without extinction, σ_s/(4π)·I0·(atan((s + b)/h) − atan(b/h))/h with
+// b = −D cos γ, h = D sin γ (exact as σ_t → 0, an overestimate otherwise), and the same
+// times e^{−σ_t D} (still ≥ the exact radiance: the extra path x + d(x) − D is ignored).
+// Same units, limits and checks as airlight_radiance_exact (+inf through the light, 0 for
+// σ_s = 0, I0 = 0 or s = 0, never NaN). Allocation-free and thread-safe.
+double airlight_radiance_no_extinction(const AirlightQuery &q);
+double airlight_radiance_no_extinction_attenuated(const AirlightQuery &q);
+
 // A loaded F table (kind "airlight_F"): axis 0 u ∈ [0, u_max], axis 1 w = π/2 − v ∈
 // [w_min, π/2], channel 0 = ln G̃ (see kernels/slut_airlight.h).
 class AirlightTable {
