@@ -262,7 +262,9 @@ SLUT_FN double slut_gs_series_u_min(double w) {
  * σ_t D² sin² γ/(d − x) for x < 0. */
 typedef struct slut_airlight_geometry {
     int kind;
-    double scale;      /* σ_s/(4π)·I0·2e^{−σ_t D}/D                                        */
+    double scale;      /* σ_s/(4π)·I0·2e^{−σ_t D}/D (slut_airlight_setup_near_end)         */
+    double scale_unattenuated; /* σ_s/(4π)·I0·2/D: scale = scale_unattenuated·e^{−optical_distance} */
+    double optical_distance;   /* σ_t D                                                    */
     double sin_gamma;  /* sin γ, ≥ 1e-300 (exact 0 is nudged; the limits below are finite) */
     double sin_half;   /* sin(γ/2) = cos w2                                                 */
     double cos_half;   /* cos(γ/2) = sin w2                                                 */
@@ -284,9 +286,11 @@ typedef struct slut_airlight_geometry {
  * w2 exactly, one with sin γ and cos γ derives them below): everything but the far end's
  * angles w1, dv and its attenuation, which take an atan, an atan and an exp
  * (slut_airlight_setup_far_end; the table radiance needs them only where it samples). */
-SLUT_FN void slut_airlight_setup_near_end(double sigma_s, double sigma_a, double intensity, double distance,
-                                          double sin_half, double cos_half, double w2, double length,
-                                          slut_airlight_geometry *g) {
+/* slut_airlight_setup_near_end_unscaled leaves scale (its exp) to the caller: the runtime
+ * folds e^{−σ_t D} into the exponentials it evaluates anyway (tables/src/airlight.cpp). */
+SLUT_FN void slut_airlight_setup_near_end_unscaled(double sigma_s, double sigma_a, double intensity, double distance,
+                                                   double sin_half, double cos_half, double w2, double length,
+                                                   slut_airlight_geometry *g) {
     double sigma_t = sigma_s + sigma_a;
     double D = distance, s = length;
     g->kind = 0;
@@ -297,7 +301,8 @@ SLUT_FN void slut_airlight_setup_near_end(double sigma_s, double sigma_a, double
     g->sin_gamma = sg;
     g->sin_half = sin_half;
     g->cos_half = cos_half;
-    g->scale = sigma_s * SLUT_INV_4PI * intensity * 2.0 * exp(-sigma_t * D) / D;
+    g->scale_unattenuated = sigma_s * SLUT_INV_4PI * intensity * 2.0 / D;
+    g->optical_distance = sigma_t * D;
     g->u = sigma_t * D * sg;
     g->w2 = w2;
     g->a2 = sigma_t * D * (2.0 * sin_half * sin_half);
@@ -317,6 +322,13 @@ SLUT_FN void slut_airlight_setup_near_end(double sigma_s, double sigma_a, double
     g->a1 = sigma_t * ((x >= 0.0) ? x + d_far : ds * (ds / (d_far - x)));
     g->tan_dv = (y >= 0.0) ? ss / (d_far + y) : (d_far - y) / ss;
     g->optical_delta = sigma_t * fmax(s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D), 0.0);
+}
+
+SLUT_FN void slut_airlight_setup_near_end(double sigma_s, double sigma_a, double intensity, double distance,
+                                          double sin_half, double cos_half, double w2, double length,
+                                          slut_airlight_geometry *g) {
+    slut_airlight_setup_near_end_unscaled(sigma_s, sigma_a, intensity, distance, sin_half, cos_half, w2, length, g);
+    if (g->kind == 0) g->scale = g->scale_unattenuated * exp(-g->optical_distance);
 }
 
 /* w1 and e^{−σ_t Δ} from tan w1 and σ_t Δ (slut_airlight_setup_near_end); dv is left to

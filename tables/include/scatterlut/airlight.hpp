@@ -11,6 +11,8 @@
 #include "scatterlut/sampler.hpp"
 #include "scatterlut/table.hpp"
 
+struct slut_airlight_geometry; // kernels/slut_airlight.h
+
 namespace scatterlut {
 
 // One airlight query in physical units.
@@ -77,11 +79,18 @@ public:
 private:
     double unit_u(double u) const;                                     // u's unit coordinate
     double scaled_tail_at(double unit_u, double u, double w, double a) const; // G̃ given it
+    // The radiance's two paths (airlight.cpp), from the geometry without its e^{−σ_t D}.
+    double one_panel_radiance(const slut_airlight_geometry &g) const;
+    double two_sample_radiance(const slut_airlight_geometry &g) const;
+    double ln_gs_at(int cell_u, double frac_u, double unit_w) const; // ln G̃ from values32_
     Table table_;
     SamplerCache cache_; // of table_
     std::vector<float> values32_; // table_.values as floats when exact (sample_encoded_at_unit)
     double u_max_ = 0;
     double w_min_ = 0;
+    int count_u_ = 0, count_w_ = 0; // nodes per axis
+    size_t channels_ = 1;
+    bool fast_lookup_ = false; // values32_ present and the axes' warps LOG1P (u), ASINH_COT (w)
 };
 
 // Throws std::invalid_argument naming the first invalid field.
