@@ -1,5 +1,5 @@
 // scatterlut runtime (internal) — four doubles at a time: AVX2 + FMA vectors and glibc's
-// libmvec for their exp, log, atan, sin, cos and tan.
+// libmvec for their exp, expm1, log, atan, sin, cos and tan.
 //
 // Why: a radiance call's cost is its transcendentals (tables/src/airlight.cpp); several of
 // them are independent (the six nodes of the one-panel θ-rule; the same step of four queries
@@ -40,6 +40,7 @@ SLUT_SIMD4_TARGET scatterlut::simd4::v4d _ZGVdN4v_atan(scatterlut::simd4::v4d);
 SLUT_SIMD4_TARGET scatterlut::simd4::v4d _ZGVdN4v_sin(scatterlut::simd4::v4d);
 SLUT_SIMD4_TARGET scatterlut::simd4::v4d _ZGVdN4v_cos(scatterlut::simd4::v4d);
 SLUT_SIMD4_TARGET scatterlut::simd4::v4d _ZGVdN4v_tan(scatterlut::simd4::v4d);
+SLUT_SIMD4_TARGET scatterlut::simd4::v4d _ZGVdN4v_expm1(scatterlut::simd4::v4d);
 }
 
 namespace scatterlut::simd4 {
@@ -53,6 +54,7 @@ SLUT_SIMD4_TARGET inline v4d atan4(v4d x) { return _ZGVdN4v_atan(x); }
 SLUT_SIMD4_TARGET inline v4d sin4(v4d x) { return _ZGVdN4v_sin(x); }
 SLUT_SIMD4_TARGET inline v4d cos4(v4d x) { return _ZGVdN4v_cos(x); }
 SLUT_SIMD4_TARGET inline v4d tan4(v4d x) { return _ZGVdN4v_tan(x); }
+SLUT_SIMD4_TARGET inline v4d expm1_4(v4d x) { return _ZGVdN4v_expm1(x); }
 // True if any lane of the mask is set.
 SLUT_SIMD4_TARGET inline bool any(v4l mask) { return _mm256_movemask_pd(_mm256_castsi256_pd(__m256i(mask))) != 0; }
 SLUT_SIMD4_TARGET inline v4d sqrt4(v4d x) { return _mm256_sqrt_pd(x); }
