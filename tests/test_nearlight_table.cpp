@@ -453,3 +453,37 @@ TEST(NearLightTable, BatchChecksEveryQueryBeforeWriting) {
     }
     for (double v : out) EXPECT_EQ(v, -1.0);
 }
+
+// The 4-D table's scalar radiance packs its transcendentals into vector lanes where the CPU
+// allows (nearlight.cpp); it must equal the general assembly σ_s/(4π)·I0·E·(T·H)/l from the
+// public lookup NearLightTable::E and slut_nl_H_scaled to 1e-12 relative (rounding only).
+TEST(NearLightTable, FiniteRadianceMatchesTheGeneralLookup) {
+    const scatterlut::NearLightTable table(default_e4());
+    std::mt19937_64 rng(37);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    int covered = 0;
+    for (int k = 0; k < 3000; ++k) {
+        scatterlut::NearLightQuery q;
+        q.sigma_s_per_m = 0.05 * std::pow(100.0, U(rng));
+        q.sigma_a_per_m = q.sigma_s_per_m * U(rng);
+        q.intensity_W_per_sr = 3.0;
+        const double z = 0.02 + 0.98 * U(rng), phi = 2 * M_PI * U(rng);
+        q.eye_dir[0] = std::sqrt(1 - z * z) * std::cos(phi);
+        q.eye_dir[1] = std::sqrt(1 - z * z) * std::sin(phi);
+        q.eye_dir[2] = z;
+        const double zl = U(rng), phil = 2 * M_PI * U(rng), l = 0.05 * std::pow(400.0, U(rng));
+        q.light_rel_m[0] = l * std::sqrt(1 - zl * zl) * std::cos(phil);
+        q.light_rel_m[1] = l * std::sqrt(1 - zl * zl) * std::sin(phil);
+        q.light_rel_m[2] = l * zl;
+        q.length_m = 0.01 * std::pow(1000.0, U(rng));
+        const scatterlut::NearLightParams p = scatterlut::near_light_params(q);
+        if (p.light_below) continue;
+        const double distance = std::sqrt(q.light_rel_m[0] * q.light_rel_m[0] + q.light_rel_m[1] * q.light_rel_m[1] +
+                                          q.light_rel_m[2] * q.light_rel_m[2]);
+        const double want = q.sigma_s_per_m / (4 * M_PI) * q.intensity_W_per_sr * table.E(p.T, p.g, p.r, p.S) *
+                            slut_nl_H_scaled(p.g, q.length_m / distance) / distance;
+        EXPECT_LE(slut_test::rel_err(table.radiance(q), want), 1e-12) << "T=" << p.T << " g=" << p.g << " r=" << p.r << " S=" << p.S;
+        covered += table.covers(p.T, p.g, p.r, p.S);
+    }
+    EXPECT_GT(covered, 1000);
+}

@@ -161,9 +161,19 @@ double NearLightTable::node_E(const size_t *node) const {
     return thick_only() ? stored : stored * slut_nl_E_base(p[0], p[2], p[3]);
 }
 
+#if SLUT_HAVE_SIMD4
+namespace {
+bool radiance_e4_simd(const NearLightTable &table, const NearLightQuery &q, const slut_nl_params &p, double *L);
+}
+#endif
+
 double NearLightTable::radiance(const NearLightQuery &q) const {
     const slut_nl_params p = params(q);
     if (p.kind != SLUT_NL_OK) return 0.0;
+#if SLUT_HAVE_SIMD4
+    double L;
+    if (!thick_only() && simd4::available() && radiance_e4_simd(*this, q, p, &L)) return L;
+#endif
     return assemble(q, p, p.T > 0.0 ? E(p.T, p.g, p.r, p.S) : 1.0);
 }
 
@@ -313,7 +323,79 @@ struct NearLightBatch {
             block(index, static_cast<int>(count - first < 4 ? count - first : 4));
         }
     }
+
+    // One 4-D query (the scalar radiance): its independent transcendentals packed into lanes
+    // of the same vector calls. The slab coordinate's seven inverse-square integrals (inside
+    // and outside at S, S_min and S_max, and H at s/l) as two vector atans, the three axis
+    // warps' logs and the coordinate's two as two vector logs, the decoding exp with e^{−T},
+    // and the value base's two expm1: 6 vector calls for 7 atan, 5 log, 2 exp and 2 expm1. The
+    // same arithmetic as NearLightTable::E and assemble otherwise. False (nothing computed)
+    // where the scalar path must answer: outside the table, zero radiance, H infinite.
+    SLUT_SIMD4_TARGET static bool e4_radiance(const NearLightTable &t, const NearLightQuery &q, const slut_nl_params &p,
+                                              double *L) {
+        if (!(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0) || !(p.distance_m > 0.0) ||
+            !(p.T > 0.0) || !t.covers(p.T, p.g, p.r, p.S))
+            return false;
+        const slut_axis *axis[3] = {&t.table_.axes[0].map, &t.table_.axes[1].map, &t.table_.axes[2].map};
+        const slut_axis &axis_q = t.table_.axes[3].map;
+        const double param[3] = {p.T, p.g, p.r};
+        v4d log_arg = simd4::splat(1.0);
+        for (int a = 0; a < 3; ++a) {
+            const int warp = axis[a]->warp;
+            if (warp == SLUT_WARP_LOG || warp == SLUT_WARP_LOGLIN) log_arg[a] = param[a];
+            else if (warp == SLUT_WARP_LOG1P) log_arg[a] = 1.0 + (param[a] - axis[a]->min) / axis[a]->scale;
+            else if (warp != SLUT_WARP_LINEAR && warp != SLUT_WARP_SQRT1P) return false;
+        }
+        const double T = p.T, g = p.g, sg = slut_nl_sin_from_cos(g);
+        const v4d lengths = {p.S / T, axis_q.min / T, axis_q.max / T, p.S_over_T};
+        const v4d inside = inv_square_integral4(lengths, simd4::splat(1.0), simd4::splat(g), simd4::splat(sg));
+        const v4d d = lengths + g;
+        const v4d outside = inv_square_integral4(simd4::splat(HUGE_VAL), d * d + sg * sg, d, simd4::splat(sg));
+        const double H_scaled = inside[3];
+        if (!std::isfinite(H_scaled)) return false;
+        const v4d odds = inside / outside; // lanes 0–2: S, S_min, S_max
+        const v4d logs = simd4::log4(log_arg);
+        const v4d ratio_logs = simd4::log4(v4d{odds[0] / odds[1], odds[2] / odds[1], 1.0, 1.0});
+        double unit[4];
+        for (int a = 0; a < 3; ++a) { // slut_unit_from_warped_runtime with the log given
+            const slut_axis &ax = *axis[a];
+            const double x = param[a];
+            double warped;
+            switch (ax.warp) {
+            case SLUT_WARP_LOG: warped = logs[a]; break;
+            case SLUT_WARP_LOGLIN: warped = logs[a] + x / ax.scale; break;
+            case SLUT_WARP_LOG1P: {
+                const double y = (x - ax.min) / ax.scale, u = 1.0 + y;
+                warped = (u == 1.0) ? y : logs[a] * (y / (u - 1.0));
+                break;
+            }
+            case SLUT_WARP_SQRT1P: warped = std::sqrt(std::fmax(1.0 + x, 0.0)); break;
+            default: warped = x;
+            }
+            unit[a] = !(x > ax.min) ? 0.0 : x >= ax.max ? 1.0 : (warped - t.cache_.g0[a]) / (t.cache_.g1[a] - t.cache_.g0[a]);
+        }
+        unit[3] = ratio_logs[0] / ratio_logs[1];
+        const double stored = sample_encoded_at_unit(t.table_, t.values32_, unit, 0);
+        // slut_nl_E_base(T, r, S): floor e^{−T}, rise −expm1(−T), E_thin(r, S_eff)
+        const double r = p.r, S_eff = slut_nl_base_depth(T, p.S);
+        const double x = (r > SLUT_INFINITE_ABOVE) ? S_eff : S_eff * ((1.0 + r) / r);
+        const v4d e = simd4::exp4(v4d{stored, -T, 0.0, 0.0});
+        const v4d em1 = simd4::expm1_4(v4d{-T, -x, 0.0, 0.0});
+        double thin;
+        if (!(S_eff > 0.0)) thin = 1.0;
+        else if (!(r > 0.0)) thin = 0.0;
+        else thin = SLUT_NL_THIN_NEEDS_EXPM1(x) ? -em1[1] / x : SLUT_NL_THIN_OF_X_WITHOUT_EXPM1(x);
+        const double E = e[0] * SLUT_NL_BASE_OF_THIN(e[1], -em1[0], thin);
+        *L = exit_transmittance(q) * q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * E * H_scaled / p.distance_m;
+        return true;
+    }
 };
+
+namespace {
+bool radiance_e4_simd(const NearLightTable &table, const NearLightQuery &q, const slut_nl_params &p, double *L) {
+    return NearLightBatch::e4_radiance(table, q, p, L);
+}
+} // namespace
 #endif
 
 void NearLightTable::radiance(const NearLightQuery *queries, size_t count, double *out) const {
