@@ -611,3 +611,20 @@ TEST(AirlightTable, BatchChecksEveryQueryBeforeWriting) {
     }
     for (double v : out) EXPECT_EQ(v, -1.0);
 }
+
+// On the exact axis (γ = 0: sin γ is nudged to 1e-300, the one-panel rule's length is
+// ~1e-300 too) with a strong attenuation e^{−σ_t D} folded into the node exponentials, the
+// product must not underflow before the division by sin γ: the closed-form limit
+// σ_s/(4π) I0 e^{−σ_t D} s/(D(D − s)) from the f32 table, scalar and batch.
+TEST(AirlightTable, ExactAxisWithStrongAttenuationDoesNotUnderflow) {
+    const double p = 1.0 / (4 * kPi);
+    for (double sigma_t : {1.0, 30.0, 200.0}) {
+        const scatterlut::AirlightQuery q{sigma_t, 0.0, 1e15, 2.5, 0.0, 1.0};
+        const double want = sigma_t * p * 1e15 * std::exp(-sigma_t * 2.5) * 1.0 / (2.5 * 1.5);
+        EXPECT_LE(rel_err(host_table_f32().radiance(q), want), 1e-12) << sigma_t;
+        std::vector<scatterlut::AirlightQuery> batch(5, q);
+        std::vector<double> out(batch.size());
+        host_table_f32().radiance(batch.data(), batch.size(), out.data());
+        for (double v : out) EXPECT_LE(rel_err(v, want), 1e-12) << sigma_t;
+    }
+}

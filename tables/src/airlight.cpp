@@ -222,7 +222,9 @@ SLUT_SIMD4_TARGET double one_panel_radiance4(const slut_airlight_geometry &g) {
     const v4d e0 = -g.c * t0 / (g.cos_half - t0 * g.sin_half) - g.optical_distance;
     const v4d e1 = -g.c * t1 / (g.cos_half - t1 * g.sin_half) - g.optical_distance;
     const v4d f = w0 / (1.0 + t0 * t0) * simd4::exp4(e0) + w1 / (1.0 + t1 * t1) * simd4::exp4(e1);
-    return g.scale_unattenuated * (half_len * ((f[0] + f[1]) + (f[2] + f[3])) / g.sin_gamma);
+    // half_len/sin γ first: at γ → 0 both are ~1e-300, and the sum carries e^{−σ_t D}, so
+    // half_len·sum would underflow where the radiance does not.
+    return g.scale_unattenuated * ((half_len / g.sin_gamma) * ((f[0] + f[1]) + (f[2] + f[3])));
 }
 } // namespace
 #endif
@@ -533,7 +535,7 @@ struct AirlightBatch {
             const v4d exponent = -c * t / (sin_w2 - t * cos_w2) - optical_distance;
             sum += (slut_gl6_w[k < 3 ? k : k - 3] / (1.0 + t * t)) * simd4::exp4(exponent);
         }
-        const v4d L = simd4::load4(q.scale_unattenuated) * (half_len * sum / simd4::load4(q.sin_gamma));
+        const v4d L = simd4::load4(q.scale_unattenuated) * ((half_len / simd4::load4(q.sin_gamma)) * sum); // as one_panel_radiance4
         for (int k = 0; k < q.size; ++k) out[q.index[k]] = L[k];
         q.size = 0;
     }
