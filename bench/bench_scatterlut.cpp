@@ -14,6 +14,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <random>
 #include <string>
 #include <thread>
@@ -22,6 +24,7 @@
 #include <benchmark/benchmark.h>
 #include <fcntl.h>
 #include <spawn.h>
+#include <time.h>
 #include <sys/wait.h>
 
 #include "airlight_reference.hpp"
@@ -306,8 +309,7 @@ BENCHMARK(BM_NearLightE)->Arg(3)->Arg(4);
 // Arg 0: all of them; 1: only those one θ-panel covers (slut_airlight_theta_fits_one_panel:
 // no table sample); 2: only the others (two table samples, or the panel rule where the two
 // ends' terms would cancel). The per-path costs say where the time goes.
-void BM_AirlightRadiance(benchmark::State &state) {
-    const scatterlut::AirlightTable table(default_airlight_table());
+std::vector<scatterlut::AirlightQuery> airlight_bench_queries(int which) {
     std::mt19937_64 rng(9);
     std::uniform_real_distribution<double> unit(0, 1);
     std::vector<scatterlut::AirlightQuery> qs;
@@ -319,27 +321,63 @@ void BM_AirlightRadiance(benchmark::State &state) {
         q.distance_m = std::pow(10.0, -3.0 + 4.0 * unit(rng)) / 0.6;
         q.gamma_rad = 1e-3 + (M_PI - 2e-3) * unit(rng);
         q.length_m = q.distance_m * std::pow(10.0, -2.0 + 3.0 * unit(rng));
-        if (state.range(0) != 0) {
+        if (which != 0) {
             slut_airlight_geometry g;
             slut_airlight_setup(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
                                 std::sin(q.gamma_rad), std::cos(q.gamma_rad), q.length_m, &g);
-            if ((state.range(0) == 1) != (slut_airlight_theta_fits_one_panel(&g) != 0)) continue;
+            if ((which == 1) != (slut_airlight_theta_fits_one_panel(&g) != 0)) continue;
         }
         qs.push_back(q);
     }
+    return qs;
+}
+
+// Counters median_rel and max_rel: the relative error of `eval` against airlight_radiance_exact
+// on the queries (after the timed loop).
+template <class Eval>
+void add_airlight_error_counters(benchmark::State &state, const std::vector<scatterlut::AirlightQuery> &qs, Eval eval) {
+    std::vector<double> err;
+    for (const auto &q : qs) err.push_back(std::fabs(eval(q) / scatterlut::airlight_radiance_exact(q) - 1.0));
+    std::sort(err.begin(), err.end());
+    state.counters["median_rel"] = err[err.size() / 2];
+    state.counters["max_rel"] = err.back();
+}
+
+void BM_AirlightRadiance(benchmark::State &state) {
+    const scatterlut::AirlightTable table(default_airlight_table());
+    const std::vector<scatterlut::AirlightQuery> qs = airlight_bench_queries(static_cast<int>(state.range(0)));
     size_t k = 0;
     for (auto _ : state) {
         benchmark::DoNotOptimize(table.radiance(qs[k]));
         k = (k + 1) % kPoints;
     }
+    add_airlight_error_counters(state, qs, [&table](const scatterlut::AirlightQuery &q) { return table.radiance(q); });
 }
 BENCHMARK(BM_AirlightRadiance)->Arg(0)->Arg(1)->Arg(2);
 
+// The closed forms engines use instead of the table (Macklin 2010), on BM_AirlightRadiance/0's
+// geometries: /0 without extinction, /1 times e^{−σ_t D}. Their error against the exact
+// radiance on these geometries is in the counters (median and max relative error), beside
+// the table's (BM_AirlightRadiance's counters).
+void BM_AirlightClosedForm(benchmark::State &state) {
+    const std::vector<scatterlut::AirlightQuery> qs = airlight_bench_queries(0);
+    const bool attenuated = state.range(0) == 1;
+    auto eval = [attenuated](const scatterlut::AirlightQuery &q) {
+        return attenuated ? scatterlut::airlight_radiance_no_extinction_attenuated(q)
+                          : scatterlut::airlight_radiance_no_extinction(q);
+    };
+    size_t k = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(eval(qs[k]));
+        k = (k + 1) % kPoints;
+    }
+    add_airlight_error_counters(state, qs, eval);
+}
+BENCHMARK(BM_AirlightClosedForm)->Arg(0)->Arg(1);
+
 // Near-light geometries: light 0.1–10 m from the entry point above the plane, view
 // directions over the upper hemisphere, thick (3-D table) or slabs of 1 mm – 10 m (4-D).
-void BM_NearLightRadiance(benchmark::State &state) {
-    const bool finite = state.range(0) == 4;
-    const scatterlut::NearLightTable table(default_nearlight_table(finite));
+std::vector<scatterlut::NearLightQuery> near_light_bench_queries(bool finite) {
     std::mt19937_64 rng(13);
     std::uniform_real_distribution<double> unit(0, 1);
     auto hemisphere = [&](double out[3]) {
@@ -360,6 +398,13 @@ void BM_NearLightRadiance(benchmark::State &state) {
         for (int i = 0; i < 3; ++i) q.light_rel_m[i] = dist * l[i];
         q.length_m = finite ? std::pow(10.0, -3.0 + 4.0 * unit(rng)) : HUGE_VAL;
     }
+    return qs;
+}
+
+void BM_NearLightRadiance(benchmark::State &state) {
+    const bool finite = state.range(0) == 4;
+    const scatterlut::NearLightTable table(default_nearlight_table(finite));
+    const std::vector<scatterlut::NearLightQuery> qs = near_light_bench_queries(finite);
     size_t k = 0;
     for (auto _ : state) {
         benchmark::DoNotOptimize(table.radiance(qs[k]));
@@ -367,6 +412,83 @@ void BM_NearLightRadiance(benchmark::State &state) {
     }
 }
 BENCHMARK(BM_NearLightRadiance)->Arg(3)->Arg(4);
+
+// The batch radiance (AirlightTable::radiance and NearLightTable::radiance over spans) against
+// the scalar call and, for the airlight, the closed form × e^{−σ_t D} engines use, on the
+// geometries of BM_AirlightRadiance/0 (arg 0) and BM_NearLightRadiance/3, /4 (args 3, 4). One
+// iteration is one round: the 4096 queries through each method back to back (thread CPU
+// time, so that other processes on the cores do not count), the order rotating per round.
+// Counters: ns per query of each (medians over the rounds), and the medians [min, max] of
+// the per-round ratios scalar/batch and closed form/batch (> 1: the batch is faster).
+double thread_cpu_seconds() {
+    timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+void BM_RadianceBatch(benchmark::State &state) {
+    const int which = static_cast<int>(state.range(0));
+    std::vector<std::function<double()>> methods; // each runs all kPoints queries, returns a checksum
+    std::vector<double> out(kPoints);
+    std::unique_ptr<scatterlut::AirlightTable> air;
+    std::unique_ptr<scatterlut::NearLightTable> near;
+    std::vector<scatterlut::AirlightQuery> air_qs;
+    std::vector<scatterlut::NearLightQuery> near_qs;
+    if (which == 0) {
+        air = std::make_unique<scatterlut::AirlightTable>(default_airlight_table());
+        air_qs = airlight_bench_queries(0);
+        methods.push_back([&] {
+            double sum = 0;
+            for (const auto &q : air_qs) sum += air->radiance(q);
+            return sum;
+        });
+        methods.push_back([&] {
+            air->radiance(air_qs.data(), air_qs.size(), out.data());
+            return out[0] + out[kPoints - 1];
+        });
+        methods.push_back([&] {
+            double sum = 0;
+            for (const auto &q : air_qs) sum += scatterlut::airlight_radiance_no_extinction_attenuated(q);
+            return sum;
+        });
+    } else {
+        near = std::make_unique<scatterlut::NearLightTable>(default_nearlight_table(which == 4));
+        near_qs = near_light_bench_queries(which == 4);
+        methods.push_back([&] {
+            double sum = 0;
+            for (const auto &q : near_qs) sum += near->radiance(q);
+            return sum;
+        });
+        methods.push_back([&] {
+            near->radiance(near_qs.data(), near_qs.size(), out.data());
+            return out[0] + out[kPoints - 1];
+        });
+    }
+    std::vector<std::vector<double>> seconds(methods.size());
+    size_t round = 0;
+    for (auto _ : state) {
+        for (size_t m = 0; m < methods.size(); ++m) {
+            const size_t k = (m + round) % methods.size();
+            const double t0 = thread_cpu_seconds();
+            benchmark::DoNotOptimize(methods[k]());
+            seconds[k].push_back(thread_cpu_seconds() - t0);
+        }
+        ++round;
+    }
+    const char *names[] = {"scalar", "batch", "closed_form_att"};
+    for (size_t m = 0; m < methods.size(); ++m)
+        state.counters[std::string(names[m]) + "_ns"] = 1e9 * median(seconds[m]) / static_cast<double>(kPoints);
+    for (size_t m = 0; m < methods.size(); ++m) {
+        if (m == 1) continue;
+        std::vector<double> ratio(seconds[1].size());
+        for (size_t k = 0; k < ratio.size(); ++k) ratio[k] = seconds[m][k] / seconds[1][k];
+        const std::string name = std::string(names[m]) + "_over_batch";
+        state.counters[name] = median(ratio);
+        state.counters[name + "_min"] = *std::min_element(ratio.begin(), ratio.end());
+        state.counters[name + "_max"] = *std::max_element(ratio.begin(), ratio.end());
+    }
+}
+BENCHMARK(BM_RadianceBatch)->Arg(0)->Arg(3)->Arg(4)->Iterations(200)->Unit(benchmark::kMillisecond);
 
 // ------------------------------------------------------------------ whole process
 

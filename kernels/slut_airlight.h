@@ -262,7 +262,9 @@ SLUT_FN double slut_gs_series_u_min(double w) {
  * σ_t D² sin² γ/(d − x) for x < 0. */
 typedef struct slut_airlight_geometry {
     int kind;
-    double scale;      /* σ_s/(4π)·I0·2e^{−σ_t D}/D                                        */
+    double scale;      /* σ_s/(4π)·I0·2e^{−σ_t D}/D (slut_airlight_setup_near_end)         */
+    double scale_unattenuated; /* σ_s/(4π)·I0·2/D: scale = scale_unattenuated·e^{−optical_distance} */
+    double optical_distance;   /* σ_t D                                                    */
     double sin_gamma;  /* sin γ, ≥ 1e-300 (exact 0 is nudged; the limits below are finite) */
     double sin_half;   /* sin(γ/2) = cos w2                                                 */
     double cos_half;   /* cos(γ/2) = sin w2                                                 */
@@ -284,9 +286,11 @@ typedef struct slut_airlight_geometry {
  * w2 exactly, one with sin γ and cos γ derives them below): everything but the far end's
  * angles w1, dv and its attenuation, which take an atan, an atan and an exp
  * (slut_airlight_setup_far_end; the table radiance needs them only where it samples). */
-SLUT_FN void slut_airlight_setup_near_end(double sigma_s, double sigma_a, double intensity, double distance,
-                                          double sin_half, double cos_half, double w2, double length,
-                                          slut_airlight_geometry *g) {
+/* slut_airlight_setup_near_end_unscaled leaves scale (its exp) to the caller: the runtime
+ * folds e^{−σ_t D} into the exponentials it evaluates anyway (tables/src/airlight.cpp). */
+SLUT_FN void slut_airlight_setup_near_end_unscaled(double sigma_s, double sigma_a, double intensity, double distance,
+                                                   double sin_half, double cos_half, double w2, double length,
+                                                   slut_airlight_geometry *g) {
     double sigma_t = sigma_s + sigma_a;
     double D = distance, s = length;
     g->kind = 0;
@@ -297,7 +301,8 @@ SLUT_FN void slut_airlight_setup_near_end(double sigma_s, double sigma_a, double
     g->sin_gamma = sg;
     g->sin_half = sin_half;
     g->cos_half = cos_half;
-    g->scale = sigma_s * SLUT_INV_4PI * intensity * 2.0 * exp(-sigma_t * D) / D;
+    g->scale_unattenuated = sigma_s * SLUT_INV_4PI * intensity * 2.0 / D;
+    g->optical_distance = sigma_t * D;
     g->u = sigma_t * D * sg;
     g->w2 = w2;
     g->a2 = sigma_t * D * (2.0 * sin_half * sin_half);
@@ -317,6 +322,13 @@ SLUT_FN void slut_airlight_setup_near_end(double sigma_s, double sigma_a, double
     g->a1 = sigma_t * ((x >= 0.0) ? x + d_far : ds * (ds / (d_far - x)));
     g->tan_dv = (y >= 0.0) ? ss / (d_far + y) : (d_far - y) / ss;
     g->optical_delta = sigma_t * fmax(s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D), 0.0);
+}
+
+SLUT_FN void slut_airlight_setup_near_end(double sigma_s, double sigma_a, double intensity, double distance,
+                                          double sin_half, double cos_half, double w2, double length,
+                                          slut_airlight_geometry *g) {
+    slut_airlight_setup_near_end_unscaled(sigma_s, sigma_a, intensity, distance, sin_half, cos_half, w2, length, g);
+    if (g->kind == 0) g->scale = g->scale_unattenuated * exp(-g->optical_distance);
 }
 
 /* w1 and e^{−σ_t Δ} from tan w1 and σ_t Δ (slut_airlight_setup_near_end); dv is left to
@@ -449,6 +461,64 @@ SLUT_FN double slut_airlight_theta_integral_one_panel(double c, double sin_w2, d
     for (int k = 0; k < 6; ++k) exponent[k] = exp(exponent[k]);
     for (int k = 0; k < 6; ++k) sum += weight[k] * exponent[k];
     return half_len * sum;
+}
+
+/* ------------------------------------------- the closed forms engines use instead */
+
+/* ∫_0^s dx/d(x)² (1/m for lengths in m), d(x)² = x² + D² − 2xD cos γ = (x + b)² + h² with
+ * b = −D cos γ and h = D sin γ (γ as above: view direction ↔ direction viewer → light):
+ *   ∫_0^s dx/((x + b)² + h²) = (atan((s + b)/h) − atan(b/h))/h = Δφ/h,
+ *   Δφ = atan2(s·h, D² + s·b)      (the angle the segment subtends at the light),
+ * evaluated as (s/den)·atan(s·h/den)/(s·h/den), den = D² + s·b = D (D − s cos γ), while
+ * Δφ < π/2 (den > 0): no division by h, so the limit h → 0 is exact there (γ = π:
+ * s/(D(s + D)); γ = 0 and s < D: s/(D(D − s))). For den ≤ 0 the angle is ≥ π/2 and
+ * (π − atan(s·h/|den|))/h has no cancellation; it is +∞ at h = 0 (γ = 0, s ≥ D: the ray
+ * passes through the light). s = +∞: Δφ = atan2(h, b). Never NaN for D > 0, s ≥ 0. */
+SLUT_FN double slut_airlight_inv_square_integral(double distance, double sin_gamma, double cos_gamma, double length) {
+    double D = distance, s = length, h = D * fmax(sin_gamma, 0.0), b = -D * cos_gamma;
+    double x, den;
+    if (!(s > 0.0)) return 0.0;
+    if (s > SLUT_INFINITE_ABOVE) {
+        if (b > 0.0) { x = h / b; return ((x == 0.0) ? 1.0 : atan(x) / x) / b; }
+        if (!(h > 0.0)) return SLUT_HUGE_VAL;
+        if (b == 0.0) return 0.5 * SLUT_PI / h;
+        return (SLUT_PI - atan(h / (-b))) / h;
+    }
+    den = D * (D - s * cos_gamma);
+    if (den > 0.0) {
+        x = s * h / den;
+        return ((x == 0.0) ? 1.0 : atan(x) / x) * (s / den);
+    }
+    if (!(h > 0.0)) return SLUT_HUGE_VAL;
+    if (den == 0.0) return 0.5 * SLUT_PI / h;
+    return (SLUT_PI - atan(s * h / (-den))) / h;
+}
+
+/* The airlight without extinction (Macklin 2010, "in-scattering of a point light"), the
+ * closed form engines evaluate per pixel instead of a table (W/(m²·sr), I0 in W/sr):
+ *   L_0 = σ_s/(4π) · I0 · (atan((s + b)/h) − atan(b/h))/h,   b = −D cos γ, h = D sin γ.
+ * The approximation: e^{−σ_t (x + d(x))} = 1 in the integrand, i.e. no attenuation on either
+ * leg of the light path. Exact as σ_t → 0 and an overestimate otherwise: with
+ * D ≤ x + d(x) ≤ 2x + D, the exact L satisfies L_0·e^{−σ_t (2s + D)} ≤ L ≤ L_0·e^{−σ_t D}, so
+ * the relative error (L_0 − L)/L is at most e^{σ_t (2s + D)} − 1 (without bound for s = ∞). 0 for σ_s = 0, I0 = 0 or s = 0;
+ * +∞ where the ray passes through the light. */
+SLUT_FN double slut_airlight_no_extinction(double sigma_s, double intensity, double distance, double sin_gamma,
+                                           double cos_gamma, double length) {
+    if (!(sigma_s > 0.0) || !(intensity > 0.0) || !(length > 0.0)) return 0.0;
+    return sigma_s * SLUT_INV_4PI * intensity * slut_airlight_inv_square_integral(distance, sin_gamma, cos_gamma, length);
+}
+
+/* The same times e^{−σ_t D}, σ_t = σ_s + σ_a (the attenuation of the direct viewer–light
+ * path, applied to every point of the ray: a common engine fudge). Since x + d(x) ≥ D
+ * (triangle inequality) it bounds the exact radiance from above, L ≤ L_0·e^{−σ_t D} ≤ L_0,
+ * and equals it as σ_t → 0; it misses the extra path x + d(x) − D, so its error grows with
+ * σ_t times the segment's length and its distance from the light. */
+SLUT_FN double slut_airlight_no_extinction_attenuated(double sigma_s, double sigma_a, double intensity,
+                                                      double distance, double sin_gamma, double cos_gamma,
+                                                      double length) {
+    double L0 = slut_airlight_no_extinction(sigma_s, intensity, distance, sin_gamma, cos_gamma, length);
+    if (!(L0 > 0.0) || !SLUT_ISFINITE(L0)) return L0; /* 0, or +∞ through the light (never ∞·0) */
+    return L0 * exp(-(sigma_s + sigma_a) * distance);
 }
 
 /* Exact airlight radiance (W/(m²·sr) for I0 in W/sr, coefficients in 1/m, lengths in m)

@@ -244,6 +244,83 @@ TEST(AirlightRadiance, LimitsAreFiniteAndCorrect) {
     EXPECT_THROW(scatterlut::airlight_radiance_exact({0.1, 0.1, 1.0, 2.0, std::nan(""), 3.0}), std::invalid_argument);
 }
 
+// The closed forms engines use (Macklin 2010; airlight_radiance_no_extinction and its
+// × e^{−σ_t D} variant). Their limits in closed form, independent of the implementation:
+//  γ = π/2, s = ∞: ∫_0^∞ dx/(x² + D²) = π/(2D);  γ = π: s/(D(D + s));
+//  γ = 0, s < D: s/(D(D − s)), continuous from γ > 0;  γ = 0, s ≥ D: +inf (never NaN);
+//  γ = 0, s = ∞: +inf;  γ = π, s = ∞: 1/D;  s = 0, σ_s = 0, I0 = 0: 0.
+TEST(AirlightClosedForm, LimitsAreFiniteAndCorrect) {
+    const double p = 1.0 / (4 * kPi), inf = std::numeric_limits<double>::infinity();
+    const double ss = 0.3, sa = 0.1, I = 2.0;
+    auto no_ext = [&](double D, double gamma, double s) {
+        return scatterlut::airlight_radiance_no_extinction({ss, sa, I, D, gamma, s});
+    };
+    auto attenuated = [&](double D, double gamma, double s) {
+        return scatterlut::airlight_radiance_no_extinction_attenuated({ss, sa, I, D, gamma, s});
+    };
+    const double k = ss * p * I;
+    EXPECT_LE(rel_err(no_ext(3.0, kPi / 2, inf), k * kPi / 6.0), 1e-15);
+    EXPECT_LE(rel_err(no_ext(3.0, kPi, 5.0), k * 5.0 / (3.0 * 8.0)), 1e-15);
+    EXPECT_LE(rel_err(no_ext(3.0, kPi - 1e-9, 5.0), k * 5.0 / (3.0 * 8.0)), 1e-15);
+    EXPECT_LE(rel_err(no_ext(3.0, kPi, inf), k / 3.0), 1e-15);
+    EXPECT_LE(rel_err(no_ext(5.0, 0.0, 2.0), k * 2.0 / (5.0 * 3.0)), 1e-15);
+    EXPECT_LE(rel_err(no_ext(5.0, 1e-12, 2.0), k * 2.0 / (5.0 * 3.0)), 1e-12);
+    EXPECT_LE(rel_err(no_ext(5.0, 1e-300, 2.0), k * 2.0 / (5.0 * 3.0)), 1e-15);
+    EXPECT_TRUE(std::isinf(no_ext(5.0, 0.0, 5.0)));
+    EXPECT_TRUE(std::isinf(no_ext(5.0, 0.0, 6.0)));
+    EXPECT_TRUE(std::isinf(no_ext(5.0, 0.0, inf)));
+    EXPECT_TRUE(std::isinf(attenuated(5.0, 0.0, 6.0)));
+    EXPECT_TRUE(std::isinf(scatterlut::airlight_radiance_no_extinction_attenuated({500.0, 500.0, 1.0, 5.0, 0.0, 6.0})));
+    // Just off the axis through the light: finite, large, and the angle form's value.
+    for (double gamma : {1e-6, 1e-12, 1e-200}) {
+        const double D = 5.0, s = 6.0, h = D * std::sin(gamma);
+        const double want = k * (kPi - std::atan(s * h / (D * (s - D * std::cos(gamma))))) / h;
+        const double got = no_ext(D, gamma, s);
+        EXPECT_TRUE(std::isfinite(got)) << gamma;
+        EXPECT_LE(rel_err(got, want), 1e-13) << gamma;
+    }
+    // The subtended angle Δφ/h at a generic geometry, both sides of den = 0 (Δφ = π/2).
+    for (double s : {1.0, 3.0 / std::cos(1.1) - 1e-9, 3.0 / std::cos(1.1), 3.0 / std::cos(1.1) + 1e-9, 20.0}) {
+        const double D = 3.0, gamma = 1.1;
+        const double want = k * std::atan2(s * D * std::sin(gamma), D * D - s * D * std::cos(gamma)) / (D * std::sin(gamma));
+        EXPECT_LE(rel_err(no_ext(D, gamma, s), want), 1e-14) << s;
+    }
+    EXPECT_EQ(no_ext(3.0, 1.0, 0.0), 0.0);
+    EXPECT_EQ(scatterlut::airlight_radiance_no_extinction({0.0, 0.1, 1.0, 5.0, 0.0, 6.0}), 0.0);
+    EXPECT_EQ(scatterlut::airlight_radiance_no_extinction_attenuated({0.3, 0.1, 0.0, 5.0, 0.0, 6.0}), 0.0);
+    EXPECT_LE(rel_err(attenuated(3.0, kPi, 5.0), k * 5.0 / 24.0 * std::exp(-0.4 * 3.0)), 1e-15);
+    EXPECT_THROW(scatterlut::airlight_radiance_no_extinction({-1.0, 0.1, 1.0, 2.0, 1.0, 3.0}), std::invalid_argument);
+    EXPECT_THROW(scatterlut::airlight_radiance_no_extinction_attenuated({0.1, 0.1, 1.0, 0.0, 1.0, 3.0}),
+                 std::invalid_argument);
+}
+
+// Against the exact radiance on random geometries: L_0·e^{−σ_t(2s + D)} ≤ L ≤ L_0·e^{−σ_t D}
+// ≤ L_0 (D ≤ x + d(x) ≤ 2x + D), so as σ_t → 0 both closed forms agree with exact to
+// σ_t·(2s + D); at σ_t = 1e-12 /m that is ≤ 1e-9 here. With real fog they are far off.
+TEST(AirlightClosedForm, BracketsExactAndAgreesAsExtinctionVanishes) {
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int n = 0; n < 2000; ++n) {
+        const double D = std::pow(10.0, -1 + 3 * unit(rng)), gamma = 1e-4 + (kPi - 2e-4) * unit(rng);
+        const double s = D * std::pow(10.0, -3 + 4 * unit(rng));
+        for (double sigma_t : {1e-12, 1e-3, 0.05, 1.0}) {
+            const scatterlut::AirlightQuery q{0.8 * sigma_t, 0.2 * sigma_t, 1.5, D, gamma, s};
+            const double exact = scatterlut::airlight_radiance_exact(q);
+            const double L0 = scatterlut::airlight_radiance_no_extinction(q);
+            const double La = scatterlut::airlight_radiance_no_extinction_attenuated(q);
+            if (!std::isfinite(exact)) continue;
+            const double slack = 1e-12; // the exact quadrature's ~1e-13 and the closed form's rounding
+            EXPECT_LE(exact, La * (1 + slack)) << "D=" << D << " gamma=" << gamma << " s=" << s;
+            EXPECT_LE(La, L0 * (1 + slack));
+            EXPECT_GE(exact, L0 * std::exp(-sigma_t * (2 * s + D)) * (1 - slack));
+            if (sigma_t == 1e-12) {
+                EXPECT_LE(rel_err(L0, exact), sigma_t * (2 * s + D) + slack);
+                EXPECT_LE(rel_err(La, exact), sigma_t * (2 * s + D) + slack);
+            }
+        }
+    }
+}
+
 // An infinite ray equals the limit of long finite ones.
 TEST(AirlightRadiance, InfiniteRayIsTheLimitOfLongRays) {
     scatterlut::AirlightQuery q{0.2, 0.05, 1.0, 4.0, 2.0, std::numeric_limits<double>::infinity()};
@@ -325,6 +402,10 @@ namespace {
 
 // A default-plan table integrated on the host with the shared quadrature (the device
 // path is tested against Boost in test_kernel).
+// The same values rounded to float, as f16/f32 files store them: the table then keeps a
+// float copy and AirlightTable::radiance takes its cheaper two-sample path (airlight.cpp).
+const scatterlut::AirlightTable &host_table_f32();
+
 const scatterlut::AirlightTable &host_table() {
     static const scatterlut::AirlightTable table = [] {
         scatterlut::Table t = scatterlut::make_airlight_table_layout(scatterlut::AirlightPlan{});
@@ -337,6 +418,35 @@ const scatterlut::AirlightTable &host_table() {
         return scatterlut::AirlightTable(std::move(t));
     }();
     return table;
+}
+
+const scatterlut::AirlightTable &host_table_f32() {
+    static const scatterlut::AirlightTable table = [] {
+        scatterlut::Table t = host_table().table();
+        for (double &v : t.values) v = static_cast<float>(v);
+        t.storage = scatterlut::Storage::F32;
+        return scatterlut::AirlightTable(std::move(t));
+    }();
+    return table;
+}
+
+// Geometries of the acceptance domain (RadianceWithinTenthOfAPercentOverTheAcceptanceDomain).
+std::vector<scatterlut::AirlightQuery> acceptance_queries(int count, unsigned seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<scatterlut::AirlightQuery> out;
+    for (int k = 0; k < count; ++k) {
+        const double D = std::pow(10.0, -2 + 4 * unit(rng));
+        const double tau = std::exp(std::log(1e-4) + (std::log(13.8) - std::log(1e-4)) * unit(rng));
+        const double sigma_t = tau / D;
+        const double pick = unit(rng);
+        const double gamma = pick < 0.4   ? 1e-3 + (kPi - 1e-3 - 1e-6) * unit(rng)
+                             : pick < 0.7 ? kPi - std::pow(10.0, -6 + 5.5 * unit(rng))
+                                          : std::pow(10.0, -3 + 3 * unit(rng));
+        const double s = unit(rng) < 0.1 ? std::numeric_limits<double>::infinity() : D * std::pow(10.0, -5 + 7 * unit(rng));
+        out.push_back({0.7 * sigma_t, 0.3 * sigma_t, 1.0, D, gamma, s});
+    }
+    return out;
 }
 
 } // namespace
@@ -412,4 +522,101 @@ TEST(AirlightTable, FAndTailFromTheTable) {
                 EXPECT_LE(rel_err(table.F(u, v), F), 2e-3) << "u=" << u << " v=" << v;
             }
         }
+}
+
+// The float-copy table's two-sample path (one 4-lane log for the three warps, the decoding
+// exps with e^{−σ_t D} and e^{−σ_t Δ} folded in: airlight.cpp) against the general lookup
+// (scaled_tail through the sampler) assembled by slut_airlight_from_gs: the same quantity
+// in other arithmetic, so 1e-12 relative (rounding only). And the f32 table's radiance holds
+// the acceptance test's 0.1 % over the same domain.
+TEST(AirlightTable, FloatTablePathMatchesTheGeneralLookup) {
+    const auto &table = host_table_f32();
+    int two_sample = 0;
+    double worst = 0;
+    for (const auto &q : acceptance_queries(20000, 23)) {
+        const double got = table.radiance(q);
+        const double exact = scatterlut::airlight_radiance_exact(q);
+        ASSERT_TRUE(std::isfinite(got) && got >= 0);
+        EXPECT_LE(rel_err(got, exact), 1e-3) << "D=" << q.distance_m << " gamma=" << q.gamma_rad << " s=" << q.length_m;
+        slut_airlight_geometry g;
+        const double half = 0.5 * q.gamma_rad;
+        slut_airlight_setup_half_angle(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
+                                       std::sin(half), std::cos(half), slut_pio2_minus(half), q.length_m, &g);
+        if (g.kind != 0 || slut_airlight_theta_fits_one_panel(&g) || !std::isfinite(q.length_m)) continue;
+        const double gs2 = table.scaled_tail(g.u, g.w2, g.a2), gs1 = table.scaled_tail(g.u, g.w1, g.a1);
+        const double want = slut_airlight_from_gs(&g, gs2, gs1);
+        worst = std::max(worst, rel_err(got, want));
+        EXPECT_LE(rel_err(got, want), 1e-12) << "D=" << q.distance_m << " gamma=" << q.gamma_rad << " s=" << q.length_m;
+        ++two_sample;
+    }
+    EXPECT_GT(two_sample, 5000);
+    RecordProperty("worst_rel_vs_general", std::to_string(worst));
+}
+
+// The batch radiance is the scalar radiance per query (to 1e-12 relative: libmvec's ≤ 4 ulp
+// exp/log/atan/sin/cos where the scalar path has libm's), for every batch size around the
+// 4-lane blocks, on both tables (the double one takes the general lookup), over the
+// acceptance domain, the hard cases and the ray through the light (+inf), with zero radiance
+// (s = 0, σ_s = 0) exactly 0.
+TEST(AirlightTable, BatchMatchesScalarPerQuery) {
+    const double inf = std::numeric_limits<double>::infinity();
+    std::vector<scatterlut::AirlightQuery> queries = acceptance_queries(4000, 29);
+    const scatterlut::AirlightQuery hard[] = {
+        {0.5, 0.5, 1.0, 200.0, 1.5, 10.0}, {5.0, 5.0, 1.0, 30.0, 0.5, inf}, {1e-9, 0.0, 1.0, 3.0, 2.0, 50.0},
+        {0.0, 0.0, 1.0, 3.0, 2.0, 50.0},   {0.3, 0.1, 1.0, 5.0, 0.0, 2.0},  {0.3, 0.1, 1.0, 5.0, kPi, 2.0},
+        {0.3, 0.1, 1.0, 5.0, kPi - 1e-12, inf}, {0.3, 0.1, 1.0, 5.0, 1.0, 1e-12}, {0.3, 0.1, 1.0, 1e-6, 2.5, 1.0},
+        {0.3, 0.1, 1.0, 5.0, 1e-7, 4.999}, {0.3, 0.1, 1.0, 5.0, 0.0, 6.0},  {0.3, 0.1, 1.0, 5.0, 1.0, 0.0},
+        {0.3, 0.1, 0.0, 5.0, 1.0, 3.0}};
+    for (size_t k = 0; k < queries.size(); k += 97) queries.insert(queries.begin() + static_cast<long>(k), hard[(k / 97) % 13]);
+    for (const scatterlut::AirlightTable *table : {&host_table(), &host_table_f32()}) {
+        for (size_t count : {size_t{0}, size_t{1}, size_t{3}, size_t{4}, size_t{5}, size_t{7}, size_t{13}, queries.size()}) {
+            std::vector<double> out(count + 1, -1.0);
+            table->radiance(queries.data(), count, out.data());
+            EXPECT_EQ(out[count], -1.0) << "wrote past the end";
+            for (size_t i = 0; i < count; ++i) {
+                const double want = table->radiance(queries[i]);
+                const auto &q = queries[i];
+                if (std::isinf(want) || want == 0.0) {
+                    EXPECT_EQ(out[i], want) << i;
+                } else {
+                    EXPECT_LE(rel_err(out[i], want), 1e-12)
+                        << "count " << count << " query " << i << ": D=" << q.distance_m << " gamma=" << q.gamma_rad
+                        << " s=" << q.length_m << " sigma_t=" << q.sigma_s_per_m + q.sigma_a_per_m;
+                }
+            }
+        }
+    }
+}
+
+// A bad query anywhere in a batch: std::invalid_argument naming its index and field, and
+// nothing written.
+TEST(AirlightTable, BatchChecksEveryQueryBeforeWriting) {
+    std::vector<scatterlut::AirlightQuery> queries(9, scatterlut::AirlightQuery{0.3, 0.1, 1.0, 5.0, 1.0, 3.0});
+    queries[6].gamma_rad = std::nan("");
+    std::vector<double> out(queries.size(), -1.0);
+    try {
+        host_table_f32().radiance(queries.data(), queries.size(), out.data());
+        ADD_FAILURE() << "no exception";
+    } catch (const std::invalid_argument &e) {
+        EXPECT_NE(std::string(e.what()).find("query 6"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("gamma"), std::string::npos) << e.what();
+    }
+    for (double v : out) EXPECT_EQ(v, -1.0);
+}
+
+// On the exact axis (γ = 0: sin γ is nudged to 1e-300, the one-panel rule's length is
+// ~1e-300 too) with a strong attenuation e^{−σ_t D} folded into the node exponentials, the
+// product must not underflow before the division by sin γ: the closed-form limit
+// σ_s/(4π) I0 e^{−σ_t D} s/(D(D − s)) from the f32 table, scalar and batch.
+TEST(AirlightTable, ExactAxisWithStrongAttenuationDoesNotUnderflow) {
+    const double p = 1.0 / (4 * kPi);
+    for (double sigma_t : {1.0, 30.0, 200.0}) {
+        const scatterlut::AirlightQuery q{sigma_t, 0.0, 1e15, 2.5, 0.0, 1.0};
+        const double want = sigma_t * p * 1e15 * std::exp(-sigma_t * 2.5) * 1.0 / (2.5 * 1.5);
+        EXPECT_LE(rel_err(host_table_f32().radiance(q), want), 1e-12) << sigma_t;
+        std::vector<scatterlut::AirlightQuery> batch(5, q);
+        std::vector<double> out(batch.size());
+        host_table_f32().radiance(batch.data(), batch.size(), out.data());
+        for (double v : out) EXPECT_LE(rel_err(v, want), 1e-12) << sigma_t;
+    }
 }

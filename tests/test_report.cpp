@@ -116,7 +116,10 @@ TEST(Report, ToleranceRungsMeetTheirTolerance) {
 }
 
 // The airlight report: the planned F table holds the fog's accepted error (0.005 in
-// fog_street.toml) over the scene's geometries, and exact and table are the two methods.
+// fog_street.toml) over the scene's geometries; beside exact and the table the report
+// shows the closed forms engines use (no extinction, and × e^{−σ_t D}), which in fog are
+// further off than the table: the no-extinction form overestimates (error ≥ the
+// attenuated form's, as L ≤ L_0·e^{−σ_t D} ≤ L_0).
 TEST(Report, AirlightTableHoldsTheScenesError) {
     const auto res = read_csv(fog_report() + "/airlight_F_resolution.csv");
     bool planned = false;
@@ -128,8 +131,12 @@ TEST(Report, AirlightTableHoldsTheScenesError) {
     EXPECT_TRUE(planned);
     std::map<std::string, Row> m;
     for (const Row &r : read_csv(fog_report() + "/airlight_F_methods.csv")) m[r.at("method")] = r;
-    ASSERT_EQ(m.size(), 2u);
+    ASSERT_EQ(m.size(), 4u);
+    EXPECT_EQ(m.at("exact").at("max_rel"), "reference");
     EXPECT_LE(num(m.at("table"), "max_rel"), 0.005);
+    EXPECT_GT(num(m.at("attenuated"), "median_rel"), num(m.at("table"), "median_rel"));
+    EXPECT_GE(num(m.at("no_extinction"), "median_rel"), num(m.at("attenuated"), "median_rel"));
+    for (const auto &[name, r] : m) EXPECT_GT(num(r, "ns_per_call"), 0.0) << name;
     expect_svg(fog_report() + "/airlight_F_resolution.svg");
     expect_svg(fog_report() + "/airlight_F_methods.svg");
 }

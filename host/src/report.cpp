@@ -323,6 +323,11 @@ std::vector<MethodRow> runtime_methods(const Table &table, const QuerySet &qs, i
                            [&](size_t k) { return airlight_radiance_exact(qs.air[k]); }});
         methods.push_back({{"table", "two samples of the planned F table (AirlightTable::radiance)", 0, {}, false},
                            [&](size_t k) { return air->radiance(qs.air[k]); }});
+        methods.push_back({{"no_extinction", "closed form without extinction, Macklin 2010 (airlight_radiance_no_extinction)", 0, {}, false},
+                           [&](size_t k) { return airlight_radiance_no_extinction(qs.air[k]); }});
+        methods.push_back({{"attenuated",
+                            "the same times e^(-sigma_t D), an engine fudge (airlight_radiance_no_extinction_attenuated)", 0, {}, false},
+                           [&](size_t k) { return airlight_radiance_no_extinction_attenuated(qs.air[k]); }});
     } else {
         near = std::make_shared<NearLightTable>(table);
         methods.push_back({{"exact", "quadrature per call (near_light_radiance_exact)", 0, {}, true},
@@ -559,8 +564,9 @@ int run_report(const ReportOptions &opt, const std::string &command_line) {
         md += "Error: relative to exact quadrature, over the radiance queries above.";
         if (is_airlight(t))
             md += " The thin-medium form (Gath 2008 §4.2) and the distant-light limit (Gath 2008 eq. 5) are near-light "
-                  "methods (a light outside the medium); for a viewer and a light inside the medium the table is the only "
-                  "approximation.";
+                  "methods (a light outside the medium); for a viewer and a light inside the medium the alternatives to "
+                  "the table are the closed forms engines use (Macklin 2010): no_extinction drops the attenuation along "
+                  "both legs of the light path, attenuated applies e^(-sigma_t D) to the whole ray.";
         md += "\n\n| method | what | ns/call | median | p90 | p99 | max |\n|---|---|---:|---:|---:|---:|---:|\n";
         for (const auto &r : methods) {
             auto e = [&](double v) { return r.reference ? std::string("reference") : fmt("%.2e", v); };

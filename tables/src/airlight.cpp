@@ -5,6 +5,7 @@
 #include <string>
 
 #include "scatterlut/sampler.hpp"
+#include "simd4.hpp"
 
 extern "C" {
 #include "slut_airlight.h"
@@ -23,15 +24,26 @@ void require(bool ok, const char *message) {
 
 // From the half angle h = γ/2 (clamped to π/2 against the rounding the check allows):
 // w2 = π/2 − h exactly, sin h and cos h by slut_sincos_half_angle (no libm call). The far
-// end's angles and attenuation are left to slut_airlight_setup_far_end.
-slut_airlight_geometry setup_near_end(const AirlightQuery &q) {
+// end's angles and attenuation are left to slut_airlight_setup_far_end, and g.scale's
+// e^{−σ_t D} to the caller (slut_airlight_setup_near_end_unscaled).
+slut_airlight_geometry setup_near_end_unscaled(const AirlightQuery &q) {
     check_airlight_query(q);
-    const double half = std::fmin(0.5 * q.gamma_rad, SLUT_PIO2_HI);
+    const double half = 0.5 * q.gamma_rad < SLUT_PIO2_HI ? 0.5 * q.gamma_rad : SLUT_PIO2_HI;
     double sin_half, cos_half;
     slut_sincos_half_angle(half, &sin_half, &cos_half);
     slut_airlight_geometry g;
-    slut_airlight_setup_near_end(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m, sin_half,
-                                 cos_half, slut_pio2_minus(half), q.length_m, &g);
+    slut_airlight_setup_near_end_unscaled(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
+                                          sin_half, cos_half, slut_pio2_minus(half), q.length_m, &g);
+    return g;
+}
+
+void set_scale(slut_airlight_geometry *g) {
+    if (g->kind == 0) g->scale = g->scale_unattenuated * std::exp(-g->optical_distance);
+}
+
+slut_airlight_geometry setup_near_end(const AirlightQuery &q) {
+    slut_airlight_geometry g = setup_near_end_unscaled(q);
+    set_scale(&g);
     return g;
 }
 
@@ -86,6 +98,33 @@ double airlight_radiance_exact(const AirlightQuery &q) {
     return slut_airlight_exact(&g);
 }
 
+namespace {
+// sin γ and cos γ from the half angle (slut_sincos_half_angle: no libm call; cos γ as
+// (cos − sin)(cos + sin) of γ/2, no cancellation near γ = π/2).
+void sincos_gamma(const AirlightQuery &q, double *sin_gamma, double *cos_gamma) {
+    check_airlight_query(q);
+    const double half = std::fmin(0.5 * q.gamma_rad, SLUT_PIO2_HI);
+    double sin_half, cos_half;
+    slut_sincos_half_angle(half, &sin_half, &cos_half);
+    *sin_gamma = 2.0 * sin_half * cos_half;
+    *cos_gamma = (cos_half - sin_half) * (cos_half + sin_half);
+}
+} // namespace
+
+double airlight_radiance_no_extinction(const AirlightQuery &q) {
+    double sin_gamma, cos_gamma;
+    sincos_gamma(q, &sin_gamma, &cos_gamma);
+    return slut_airlight_no_extinction(q.sigma_s_per_m, q.intensity_W_per_sr, q.distance_m, sin_gamma, cos_gamma,
+                                       q.length_m);
+}
+
+double airlight_radiance_no_extinction_attenuated(const AirlightQuery &q) {
+    double sin_gamma, cos_gamma;
+    sincos_gamma(q, &sin_gamma, &cos_gamma);
+    return slut_airlight_no_extinction_attenuated(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr,
+                                                  q.distance_m, sin_gamma, cos_gamma, q.length_m);
+}
+
 AirlightTable::AirlightTable(Table table) : table_(std::move(table)) {
     require(table_.kind == kKindAirlightF, "not an airlight F table (kind '" + table_.kind + "')");
     require(table_.quantity_version == kAirlightFQuantityVersion,
@@ -104,6 +143,11 @@ AirlightTable::AirlightTable(Table table) : table_(std::move(table)) {
     values32_ = float_values_if_exact(table_);
     u_max_ = table_.axes[0].map.max;
     w_min_ = table_.axes[1].map.min;
+    count_u_ = table_.axes[0].map.count;
+    count_w_ = table_.axes[1].map.count;
+    channels_ = table_.channels.size();
+    fast_lookup_ = !values32_.empty() && table_.axes[0].map.warp == SLUT_WARP_LOG1P &&
+                   table_.axes[1].map.warp == SLUT_WARP_ASINH_COT;
 }
 
 // The table regime from (u, w, a = u·cot w): for u > 0 the w axis's ASINH_COT warp is
@@ -155,15 +199,448 @@ double AirlightTable::F(double u, double v) const {
 // accurate than the table and cheaper than two lookups); the others the two table samples
 // (slut_airlight_from_gs, which still integrates where they would cancel).
 double AirlightTable::radiance(const AirlightQuery &q) const {
-    slut_airlight_geometry g = setup_near_end(q);
+    const slut_airlight_geometry g = setup_near_end_unscaled(q);
     if (g.kind != 0) return slut_airlight_from_gs(&g, 0.0, 0.0);
-    if (slut_airlight_theta_fits_one_panel(&g))
-        return g.scale * (slut_airlight_theta_integral_one_panel(g.c, g.cos_half, g.sin_half, g.tan_dv) / g.sin_gamma);
-    slut_airlight_setup_far_end(&g);
-    const double at_u = unit_u(g.u);
-    const double gs2 = scaled_tail_at(at_u, g.u, g.w2, g.a2);
-    const double gs1 = g.w1 > 0.0 ? scaled_tail_at(at_u, g.u, g.w1, g.a1) : 0.0;
-    return slut_airlight_from_gs(&g, gs2, gs1);
+    if (slut_airlight_theta_fits_one_panel(&g)) return one_panel_radiance(g);
+    return two_sample_radiance(g);
+}
+
+#if SLUT_HAVE_SIMD4
+namespace {
+using simd4::v4d;
+
+// slut_airlight_theta_integral_one_panel's six nodes as two 4-lane vectors (the last two
+// lanes weight 0), e^{−σ_t D} folded into the node exponentials: the same sum in 2 vector
+// exps instead of 7 scalar ones and a third of the divides.
+SLUT_SIMD4_TARGET double one_panel_radiance4(const slut_airlight_geometry &g) {
+    const v4d x0 = {-slut_gl6_x[0], -slut_gl6_x[1], -slut_gl6_x[2], slut_gl6_x[0]};
+    const v4d x1 = {slut_gl6_x[1], slut_gl6_x[2], 0.0, 0.0};
+    const v4d w0 = {slut_gl6_w[0], slut_gl6_w[1], slut_gl6_w[2], slut_gl6_w[0]};
+    const v4d w1 = {slut_gl6_w[1], slut_gl6_w[2], 0.0, 0.0};
+    const double half_len = 0.5 * g.tan_dv;
+    const v4d t0 = half_len * (1.0 + x0), t1 = half_len * (1.0 + x1);
+    const v4d e0 = -g.c * t0 / (g.cos_half - t0 * g.sin_half) - g.optical_distance;
+    const v4d e1 = -g.c * t1 / (g.cos_half - t1 * g.sin_half) - g.optical_distance;
+    const v4d f = w0 / (1.0 + t0 * t0) * simd4::exp4(e0) + w1 / (1.0 + t1 * t1) * simd4::exp4(e1);
+    // half_len/sin γ first: at γ → 0 both are ~1e-300, and the sum carries e^{−σ_t D}, so
+    // half_len·sum would underflow where the radiance does not.
+    return g.scale_unattenuated * ((half_len / g.sin_gamma) * ((f[0] + f[1]) + (f[2] + f[3])));
+}
+} // namespace
+#endif
+
+double AirlightTable::one_panel_radiance(const slut_airlight_geometry &g) const {
+#if SLUT_HAVE_SIMD4
+    if (simd4::available()) return one_panel_radiance4(g);
+#endif
+    return g.scale_unattenuated * std::exp(-g.optical_distance) *
+           (slut_airlight_theta_integral_one_panel(g.c, g.cos_half, g.sin_half, g.tan_dv) / g.sin_gamma);
+}
+
+namespace {
+#if SLUT_HAVE_SIMD4
+SLUT_SIMD4_TARGET void logs3_simd(double a, double b, double c, double *la, double *lb, double *lc) {
+    const v4d l = simd4::log4(v4d{a, b, c, 1.0});
+    *la = l[0];
+    *lb = l[1];
+    *lc = l[2];
+}
+SLUT_SIMD4_TARGET void exps2_simd(double a, double b, double *ea, double *eb) {
+    const v4d e = simd4::exp4(v4d{a, b, 0.0, 0.0});
+    *ea = e[0];
+    *eb = e[1];
+}
+#endif
+
+#if SLUT_HAVE_SIMD4
+// slut_airlight_theta_integral_rule(c, w2, dv, 0) with each panel's eight node exps as two
+// 4-lane exps and its two sines and cosines as one 4-lane sin and cos: the same panels,
+// nodes, weights and stopping rule.
+SLUT_SIMD4_TARGET double theta_rule8_simd(double c, double w2, double dv) {
+    if (dv <= 0.0) return 0.0;
+    if (c <= 0.0) return dv;
+    const v4d x_low = {-slut_gl8_x[0], -slut_gl8_x[1], -slut_gl8_x[2], -slut_gl8_x[3]};
+    const v4d x_high = {slut_gl8_x[0], slut_gl8_x[1], slut_gl8_x[2], slut_gl8_x[3]};
+    const v4d weight = {slut_gl8_w[0], slut_gl8_w[1], slut_gl8_w[2], slut_gl8_w[3]};
+    const double sin_w2 = std::sin(w2);
+    double delta = w2, remaining = dv, sum = 0.0;
+    for (int panel = 0; panel < 20000 && remaining > 0.0; ++panel) {
+        const double theta = dv - remaining;
+        const v4d angles = {delta, theta, 0.0, 0.0};
+        const v4d sines = simd4::sin4(angles), cosines = simd4::cos4(angles);
+        const double sd = sines[0], st = sines[1], cd = cosines[0], ct = cosines[1];
+        const double rate = c * sin_w2 / (sd * sd);
+        const double f_start = std::exp(-c * st / sd);
+        if (panel > 0 && f_start <= 1e-17 * sum * rate) break;
+        const double h = std::fmin(remaining, std::fmin(0.25 * delta, 4.0 / rate));
+        const double half_len = 0.5 * std::tan(h);
+        const v4d t_low = half_len + half_len * x_low, t_high = half_len + half_len * x_high;
+        const v4d f = simd4::exp4(-c * (st + t_low * ct) / (sd - t_low * cd)) / (1.0 + t_low * t_low) +
+                      simd4::exp4(-c * (st + t_high * ct) / (sd - t_high * cd)) / (1.0 + t_high * t_high);
+        const v4d part = weight * f;
+        sum += half_len * ((part[0] + part[1]) + (part[2] + part[3]));
+        remaining -= h;
+        delta -= h;
+    }
+    return sum;
+}
+#endif
+
+double theta_rule8(double c, double w2, double dv) {
+#if SLUT_HAVE_SIMD4
+    if (simd4::available()) return theta_rule8_simd(c, w2, dv);
+#endif
+    return slut_airlight_theta_integral_rule(c, w2, dv, 0);
+}
+
+void logs3(double a, double b, double c, double *la, double *lb, double *lc) {
+#if SLUT_HAVE_SIMD4
+    if (simd4::available()) return logs3_simd(a, b, c, la, lb, lc);
+#endif
+    *la = std::log(a);
+    *lb = std::log(b);
+    *lc = std::log(c);
+}
+
+void exps2(double a, double b, double *ea, double *eb) {
+#if SLUT_HAVE_SIMD4
+    if (simd4::available()) return exps2_simd(a, b, ea, eb);
+#endif
+    *ea = std::exp(a);
+    *eb = std::exp(b);
+}
+} // namespace
+
+// ln G̃ at unit coordinates from the float copy: sample_encoded_at_unit's 2-D case (the
+// same lerps in the same order: identical values) with the u cell given.
+double AirlightTable::ln_gs_at(int cell_u, double frac_u, double unit_w) const {
+    int cell_w;
+    double frac_w;
+    slut_cell_from_unit(unit_w, count_w_, &cell_w, &frac_w);
+    const float *v = values32_.data() + (static_cast<size_t>(cell_w) * static_cast<size_t>(count_u_) +
+                                         static_cast<size_t>(cell_u)) * channels_;
+    const size_t row = static_cast<size_t>(count_u_) * channels_;
+    auto lerp = [](double lower, double upper, double f) {
+        return f == 0.0 ? lower : f == 1.0 ? upper : lower + f * (upper - lower);
+    };
+    const double lower = lerp(v[0], v[row], frac_w), upper = lerp(v[channels_], v[row + channels_], frac_w);
+    return lerp(lower, upper, frac_u);
+}
+
+// Both ends from the table (slut_airlight_from_gs's sum, its cancellation test and its
+// fallback) with fewer transcendentals: the u warp (LOG1P, Goldberg's form) and the two w
+// warps (−ln(a/u + √(1 + (a/u)²))) as one 4-lane log, the decoding exps with e^{−σ_t D} and
+// e^{−σ_t Δ} folded in (one 4-lane exp instead of four exps). Where an end leaves the
+// table (u > u_max, w1 < w_min: the asymptotic forms), for an infinite ray, f64 storage or
+// another u warp: the general path.
+double AirlightTable::two_sample_radiance(const slut_airlight_geometry &geometry) const {
+    slut_airlight_geometry g = geometry;
+    const double w1 = SLUT_ISFINITE(g.optical_delta) ? std::atan(g.tan_w1) : 0.0;
+    if (!fast_lookup_ || !SLUT_ISFINITE(g.optical_delta) || !(w1 >= w_min_) || !(g.u > 0.0) || g.u > u_max_) {
+        set_scale(&g);
+        slut_airlight_setup_far_end(&g);
+        const double at_u = unit_u(g.u);
+        const double gs2 = scaled_tail_at(at_u, g.u, g.w2, g.a2);
+        const double gs1 = g.w1 > 0.0 ? scaled_tail_at(at_u, g.u, g.w1, g.a1) : 0.0;
+        return slut_airlight_from_gs(&g, gs2, gs1);
+    }
+    const slut_axis &axis_u = table_.axes[0].map;
+    const double x_u = (g.u - axis_u.min) / axis_u.scale, one_plus_x_u = 1.0 + x_u;
+    const double cot2 = g.a2 / g.u, cot1 = g.a1 / g.u;
+    const double arg2 = cot2 + std::sqrt(1.0 + cot2 * cot2), arg1 = cot1 + std::sqrt(1.0 + cot1 * cot1);
+    double log_u, log2, log1;
+    logs3(one_plus_x_u, arg2, arg1, &log_u, &log2, &log1);
+    double unit_u;
+    if (!(g.u > axis_u.min)) unit_u = 0.0;
+    else if (g.u >= axis_u.max) unit_u = 1.0;
+    else unit_u = ((one_plus_x_u == 1.0 ? x_u : log_u * (x_u / (one_plus_x_u - 1.0))) - cache_.g0[0]) /
+                  (cache_.g1[0] - cache_.g0[0]);
+    int cell_u;
+    double frac_u;
+    slut_cell_from_unit(unit_u, count_u_, &cell_u, &frac_u);
+    const double span_w = cache_.g1[1] - cache_.g0[1];
+    const double ln2 = ln_gs_at(cell_u, frac_u, (-log2 - cache_.g0[1]) / span_w);
+    const double ln1 = ln_gs_at(cell_u, frac_u, (-log1 - cache_.g0[1]) / span_w);
+    double e2, e1;
+    exps2(ln2 - g.optical_distance, ln1 - g.optical_distance - g.optical_delta, &e2, &e1);
+    const double viewer_term = (g.w2 / g.sin_gamma) * e2, far_term = (w1 / g.sin_gamma) * e1;
+    if (far_term <= 0.5 * viewer_term) return g.scale_unattenuated * (viewer_term - far_term);
+    set_scale(&g);
+    return g.scale * (theta_rule8(g.c, g.w2, slut_airlight_dv(&g)) / g.sin_gamma);
+}
+
+// ------------------------------------------------------------------ batch radiance
+
+void check_airlight_queries(const AirlightQuery *queries, size_t count) {
+    for (size_t i = 0; i < count; ++i) {
+        try {
+            check_airlight_query(queries[i]);
+        } catch (const std::invalid_argument &e) {
+            throw std::invalid_argument("query " + std::to_string(i) + ": " + e.what());
+        }
+    }
+}
+
+#if SLUT_HAVE_SIMD4
+// Four queries at a time. Each block of four is set up in 4-lane vectors (the arithmetic of
+// slut_airlight_setup_near_end_unscaled, restated lane-wise; sin and cos of γ/2 by libmvec);
+// each query then joins one of two queues by its path (AirlightTable::radiance's test
+// slut_airlight_theta_fits_one_panel), and a queue holding four runs its path on all four
+// lanes: the one-panel θ-rule (6 vector exps per four queries) or the two table samples (a
+// vector atan, three vector logs, two vector exps and eight cell gathers per query). So no
+// lane computes a path it does not take. Queries the vectors do not serve (zero radiance,
+// the ray through the light, an infinite ray, an end beyond the table, the cancelling case)
+// take the scalar radiance(q), which handles them all.
+struct AirlightBatch {
+    struct Lanes { // one queue: up to 4 pending queries (structure of arrays)
+        double c[4], sin_half[4], cos_half[4], tan_dv[4], optical_distance[4], scale_unattenuated[4], sin_gamma[4];
+        double u[4], a1[4], a2[4], w2[4], tan_w1[4], optical_delta[4];
+        size_t index[4];
+        int size = 0;
+    };
+
+    const AirlightTable &table;
+    const AirlightQuery *queries;
+    double *out;
+
+    Lanes theta_rule; // two-sample queries whose ends' terms cancel: the 8-point θ-rule
+
+    SLUT_SIMD4_TARGET void run(size_t count) {
+        Lanes one_panel, two_sample;
+        for (size_t first = 0; first < count; first += 4) {
+            size_t index[4];
+            for (int l = 0; l < 4; ++l) index[l] = first + static_cast<size_t>(l) < count ? first + static_cast<size_t>(l) : first;
+            setup_block(index, one_panel, two_sample);
+        }
+        if (one_panel.size > 0) flush_one_panel(one_panel);
+        if (two_sample.size > 0) flush_two_sample(two_sample);
+        if (theta_rule.size > 0) flush_theta_rule(theta_rule);
+    }
+
+    static void push(Lanes &to, const Lanes &from, int k) {
+        const int n = to.size++;
+        to.index[n] = from.index[k];
+        to.c[n] = from.c[k];
+        to.sin_half[n] = from.sin_half[k];
+        to.cos_half[n] = from.cos_half[k];
+        to.tan_dv[n] = from.tan_dv[k];
+        to.optical_distance[n] = from.optical_distance[k];
+        to.scale_unattenuated[n] = from.scale_unattenuated[k];
+        to.sin_gamma[n] = from.sin_gamma[k];
+        to.u[n] = from.u[k];
+        to.a1[n] = from.a1[k];
+        to.a2[n] = from.a2[k];
+        to.w2[n] = from.w2[k];
+        to.tan_w1[n] = from.tan_w1[k];
+        to.optical_delta[n] = from.optical_delta[k];
+    }
+
+    SLUT_SIMD4_TARGET void setup_block(const size_t *index, Lanes &one_panel, Lanes &two_sample) {
+        using simd4::v4d;
+        using simd4::v4l;
+        v4d sigma_s, sigma_a, intensity, D, gamma, s;
+        for (int l = 0; l < 4; ++l) {
+            const AirlightQuery &q = queries[index[l]];
+            sigma_s[l] = q.sigma_s_per_m;
+            sigma_a[l] = q.sigma_a_per_m;
+            intensity[l] = q.intensity_W_per_sr;
+            D[l] = q.distance_m;
+            gamma[l] = q.gamma_rad;
+            s[l] = q.length_m;
+        }
+        const v4d zero = simd4::splat(0.0);
+        const v4d half = simd4::min4(0.5 * gamma, simd4::splat(SLUT_PIO2_HI));
+        const v4d sin_half = simd4::sin4(half), cos_half = simd4::cos4(half);
+        const v4d w2 = (SLUT_PIO2_HI - half) + SLUT_PIO2_LO;
+        const v4d sin_gamma = simd4::max4(2.0 * sin_half * cos_half, simd4::splat(1e-300));
+        const v4d cos_gamma = (cos_half - sin_half) * (cos_half + sin_half);
+        const v4d sigma_t = sigma_s + sigma_a;
+        const v4d scale_unattenuated = sigma_s * SLUT_INV_4PI * intensity * 2.0 / D;
+        const v4d optical_distance = sigma_t * D;
+        const v4d u = optical_distance * sin_gamma;
+        const v4d a2 = optical_distance * (2.0 * sin_half * sin_half);
+        const v4d c = 2.0 * optical_distance * sin_half;
+        const v4d d_far = simd4::sqrt4((s - D) * (s - D) + 4.0 * s * D * sin_half * sin_half);
+        const v4d x = s - D * cos_gamma, ds = D * sin_gamma;
+        const v4d y = D - s * cos_gamma, ss = s * sin_gamma;
+        const v4l x_ahead = x >= zero, y_ahead = y >= zero;
+        const v4d tan_w1 = simd4::select(x_ahead, ds / (d_far + x), (d_far - x) / ds);
+        const v4d a1 = sigma_t * simd4::select(x_ahead, x + d_far, ds * (ds / (d_far - x)));
+        const v4d tan_dv = simd4::select(y_ahead, ss / (d_far + y), (d_far - y) / ss);
+        const v4d optical_delta = sigma_t * simd4::max4(s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D), zero);
+        // Lanes for the vectors: kind 0 (σ_s, I0, s > 0), finite s, γ/2 > 0 (not through the light).
+        const v4l regular = (sigma_s > zero) & (intensity > zero) & (s > zero) & (s <= simd4::splat(SLUT_INFINITE_ABOVE)) &
+                            (sin_half > zero);
+        const v4l fits = (tan_dv <= 0.25 * w2) & (c * tan_dv <= 4.0 * cos_half);
+        for (int l = 0; l < 4; ++l) {
+            if (l > 0 && index[l] == index[0]) break; // the padding of the last block
+            if (!regular[l]) {
+                out[index[l]] = table.radiance(queries[index[l]]);
+                continue;
+            }
+            Lanes &queue = fits[l] ? one_panel : two_sample;
+            const int k = queue.size++;
+            queue.index[k] = index[l];
+            queue.c[k] = c[l];
+            queue.sin_half[k] = sin_half[l];
+            queue.cos_half[k] = cos_half[l];
+            queue.tan_dv[k] = tan_dv[l];
+            queue.optical_distance[k] = optical_distance[l];
+            queue.scale_unattenuated[k] = scale_unattenuated[l];
+            queue.sin_gamma[k] = sin_gamma[l];
+            queue.u[k] = u[l];
+            queue.a1[k] = a1[l];
+            queue.a2[k] = a2[l];
+            queue.w2[k] = w2[l];
+            queue.tan_w1[k] = tan_w1[l];
+            queue.optical_delta[k] = optical_delta[l];
+            if (queue.size == 4) {
+                if (fits[l]) flush_one_panel(queue);
+                else flush_two_sample(queue);
+            }
+        }
+    }
+
+    // A partial queue's unused lanes repeat lane 0 (finite, never stored).
+    static void pad(Lanes &q) {
+        for (int k = q.size; k < 4; ++k) {
+            q.c[k] = q.c[0];
+            q.sin_half[k] = q.sin_half[0];
+            q.cos_half[k] = q.cos_half[0];
+            q.tan_dv[k] = q.tan_dv[0];
+            q.optical_distance[k] = q.optical_distance[0];
+            q.scale_unattenuated[k] = q.scale_unattenuated[0];
+            q.sin_gamma[k] = q.sin_gamma[0];
+            q.u[k] = q.u[0];
+            q.a1[k] = q.a1[0];
+            q.a2[k] = q.a2[0];
+            q.w2[k] = q.w2[0];
+            q.tan_w1[k] = q.tan_w1[0];
+            q.optical_delta[k] = q.optical_delta[0];
+        }
+    }
+
+    // slut_airlight_theta_integral_one_panel on four queries (the same nodes in the same
+    // order), times scale = scale_unattenuated·e^{−σ_t D} folded into the exponentials.
+    SLUT_SIMD4_TARGET void flush_one_panel(Lanes &q) {
+        using simd4::v4d;
+        pad(q);
+        const v4d c = simd4::load4(q.c), sin_w2 = simd4::load4(q.cos_half), cos_w2 = simd4::load4(q.sin_half);
+        const v4d optical_distance = simd4::load4(q.optical_distance);
+        const v4d half_len = 0.5 * simd4::load4(q.tan_dv);
+        v4d sum = simd4::splat(0.0);
+        for (int k = 0; k < 6; ++k) {
+            const double node = (k < 3) ? -slut_gl6_x[k] : slut_gl6_x[k - 3];
+            const v4d t = half_len * (1.0 + node);
+            const v4d exponent = -c * t / (sin_w2 - t * cos_w2) - optical_distance;
+            sum += (slut_gl6_w[k < 3 ? k : k - 3] / (1.0 + t * t)) * simd4::exp4(exponent);
+        }
+        const v4d L = simd4::load4(q.scale_unattenuated) * ((half_len / simd4::load4(q.sin_gamma)) * sum); // as one_panel_radiance4
+        for (int k = 0; k < q.size; ++k) out[q.index[k]] = L[k];
+        q.size = 0;
+    }
+
+    // AirlightTable::two_sample_radiance on four queries.
+    SLUT_SIMD4_TARGET void flush_two_sample(Lanes &q) {
+        using simd4::v4d;
+        using simd4::v4l;
+        pad(q);
+        const AirlightTable &t = table;
+        const v4d u = simd4::load4(q.u), w2 = simd4::load4(q.w2), sin_gamma = simd4::load4(q.sin_gamma);
+        const v4d optical_distance = simd4::load4(q.optical_distance);
+        const v4d w1 = simd4::atan4(simd4::load4(q.tan_w1));
+        const v4l in_table = (w1 >= simd4::splat(t.w_min_)) & (u <= simd4::splat(t.u_max_));
+        double viewer[4], far[4];
+        if (t.fast_lookup_) {
+            const slut_axis &axis_u = t.table_.axes[0].map;
+            const v4d x_u = (u - axis_u.min) / axis_u.scale, one_plus_x_u = 1.0 + x_u;
+            const v4d cot2 = simd4::load4(q.a2) / u, cot1 = simd4::load4(q.a1) / u;
+            const v4d log_u = simd4::log4(one_plus_x_u);
+            const v4d log2 = simd4::log4(cot2 + simd4::sqrt4(1.0 + cot2 * cot2));
+            const v4d log1 = simd4::log4(cot1 + simd4::sqrt4(1.0 + cot1 * cot1));
+            const v4d g_u = simd4::select(one_plus_x_u == 1.0, x_u, log_u * (x_u / (one_plus_x_u - 1.0)));
+            v4d unit_u = (g_u - t.cache_.g0[0]) / (t.cache_.g1[0] - t.cache_.g0[0]);
+            unit_u = simd4::select(u <= axis_u.min, simd4::splat(0.0), unit_u);
+            unit_u = simd4::select(u >= axis_u.max, simd4::splat(1.0), unit_u);
+            const double span_w = t.cache_.g1[1] - t.cache_.g0[1];
+            const v4d unit_w2 = (-log2 - t.cache_.g0[1]) / span_w, unit_w1 = (-log1 - t.cache_.g0[1]) / span_w;
+            v4d ln2, ln1;
+            for (int k = 0; k < 4; ++k) {
+                int cell_u;
+                double frac_u;
+                slut_cell_from_unit(unit_u[k], t.count_u_, &cell_u, &frac_u);
+                ln2[k] = t.ln_gs_at(cell_u, frac_u, unit_w2[k]);
+                ln1[k] = t.ln_gs_at(cell_u, frac_u, unit_w1[k]);
+            }
+            const v4d e2 = simd4::exp4(ln2 - optical_distance);
+            const v4d e1 = simd4::exp4(ln1 - optical_distance - simd4::load4(q.optical_delta));
+            simd4::store4(viewer, (w2 / sin_gamma) * e2);
+            simd4::store4(far, (w1 / sin_gamma) * e1);
+        }
+        for (int k = 0; k < q.size; ++k) {
+            const size_t i = q.index[k];
+            if (!t.fast_lookup_ || !in_table[k] || !(u[k] > 0.0)) {
+                out[i] = t.radiance(queries[i]); // an end beyond the table (asymptotic forms): the scalar path
+            } else if (far[k] <= 0.5 * viewer[k]) {
+                out[i] = q.scale_unattenuated[k] * (viewer[k] - far[k]);
+            } else {
+                push(theta_rule, q, k);
+                if (theta_rule.size == 4) flush_theta_rule(theta_rule);
+            }
+        }
+        q.size = 0;
+    }
+
+    // slut_airlight_theta_integral_rule(c, w2, dv, 0) on four queries: the same panels (their
+    // length from each lane's own pole distance and decay rate), lane by lane masked off as
+    // it reaches its end or its remainder bound, 8 Gauss points per panel.
+    SLUT_SIMD4_TARGET void flush_theta_rule(Lanes &q) {
+        using simd4::v4d;
+        using simd4::v4l;
+        pad(q);
+        const v4d zero = simd4::splat(0.0);
+        const v4d c = simd4::load4(q.c), w2 = simd4::load4(q.w2);
+        const v4d dv = simd4::atan4(simd4::load4(q.tan_dv));
+        const v4d sin_w2 = simd4::sin4(w2);
+        v4d delta = w2, remaining = dv, sum = zero;
+        v4l active = remaining > zero;
+        for (int panel = 0; panel < 20000 && simd4::any(active); ++panel) {
+            const v4d theta = dv - remaining;
+            const v4d sd = simd4::sin4(delta), cd = simd4::cos4(delta), st = simd4::sin4(theta), ct = simd4::cos4(theta);
+            const v4d rate = c * sin_w2 / (sd * sd);
+            const v4d f_start = simd4::exp4(-c * st / sd);
+            if (panel > 0) active &= ~(f_start <= 1e-17 * sum * rate);
+            const v4d h = simd4::min4(remaining, simd4::min4(0.25 * delta, 4.0 / rate));
+            const v4d half_len = 0.5 * simd4::tan4(h);
+            v4d part = zero;
+            for (int k = 0; k < 4; ++k) {
+                for (int side = -1; side <= 1; side += 2) {
+                    const v4d t = half_len + (double)side * half_len * slut_gl8_x[k];
+                    part += slut_gl8_w[k] * simd4::exp4(-c * (st + t * ct) / (sd - t * cd)) / (1.0 + t * t);
+                }
+            }
+            sum = simd4::select(active, sum + half_len * part, sum);
+            remaining = simd4::select(active, remaining - h, remaining);
+            delta = simd4::select(active, delta - h, delta);
+            active &= remaining > zero;
+        }
+        const v4d scale = simd4::load4(q.scale_unattenuated) * simd4::exp4(-simd4::load4(q.optical_distance));
+        const v4d L = scale * (sum / simd4::load4(q.sin_gamma));
+        for (int k = 0; k < q.size; ++k) out[q.index[k]] = L[k];
+        q.size = 0;
+    }
+};
+#endif
+
+void AirlightTable::radiance(const AirlightQuery *queries, size_t count, double *out) const {
+    check_airlight_queries(queries, count);
+#if SLUT_HAVE_SIMD4
+    if (simd4::available()) {
+        AirlightBatch{*this, queries, out, {}}.run(count);
+        return;
+    }
+#endif
+    for (size_t i = 0; i < count; ++i) out[i] = radiance(queries[i]);
 }
 
 } // namespace scatterlut

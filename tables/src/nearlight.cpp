@@ -5,6 +5,7 @@
 #include <string>
 
 #include "scatterlut/sampler.hpp"
+#include "simd4.hpp"
 
 extern "C" {
 #include "slut_nearlight.h"
@@ -26,8 +27,14 @@ bool unit_vector(const double *v) {
     return std::fabs(n2 - 1.0) < 1e-9;
 }
 
+slut_nl_params params_unchecked(const NearLightQuery &q);
+
 slut_nl_params params(const NearLightQuery &q) {
     check_near_light_query(q);
+    return params_unchecked(q);
+}
+
+slut_nl_params params_unchecked(const NearLightQuery &q) {
     double eye_inside[3] = {q.eye_dir[0], q.eye_dir[1], q.eye_dir[2]};
     const double mu_e = q.eye_dir[0] * q.normal[0] + q.eye_dir[1] * q.normal[1] + q.eye_dir[2] * q.normal[2];
     require(mu_e > 0.0, "the viewer is below the surface (eye_dir . normal <= 0)");
@@ -154,10 +161,259 @@ double NearLightTable::node_E(const size_t *node) const {
     return thick_only() ? stored : stored * slut_nl_E_base(p[0], p[2], p[3]);
 }
 
+#if SLUT_HAVE_SIMD4
+namespace {
+bool radiance_e4_simd(const NearLightTable &table, const NearLightQuery &q, const slut_nl_params &p, double *L);
+}
+#endif
+
 double NearLightTable::radiance(const NearLightQuery &q) const {
     const slut_nl_params p = params(q);
     if (p.kind != SLUT_NL_OK) return 0.0;
+#if SLUT_HAVE_SIMD4
+    double L;
+    if (!thick_only() && simd4::available() && radiance_e4_simd(*this, q, p, &L)) return L;
+#endif
     return assemble(q, p, p.T > 0.0 ? E(p.T, p.g, p.r, p.S) : 1.0);
+}
+
+// ------------------------------------------------------------------ batch radiance
+
+#if SLUT_HAVE_SIMD4
+// Four queries at a time: each query's parameters (T, g, r, S) lane by lane (dot products
+// and a sqrt: slut_nl_params_from_geometry), then in 4-lane vectors what costs: the axis
+// warps (one vector log per log-type axis), H (one vector atan), for the 4-D table the slab
+// coordinate (slut_nl_unit_from_S: six vector atans and two vector logs) and the value base
+// (slut_nl_E_base: a vector exp and two vector expm1), the decoding exp; the cells of the four
+// queries are gathered together. The vector forms restate slut_nl_inv_square_integral, the
+// warps of slut_unit_from_warped_runtime and slut_nl_E_base lane-wise (kernels/); the tests
+// compare every query with the scalar call. Queries the vectors do not serve (zero
+// radiance, the light at the entry point, T = 0, outside the table, an axis warp without a
+// vector form) take the scalar radiance(q).
+struct NearLightBatch {
+    using v4d = simd4::v4d;
+    using v4l = simd4::v4l;
+
+    const NearLightTable &table;
+    const NearLightQuery *queries;
+    double *out;
+
+    // slut_nl_inv_square_integral(len, hh2, d, w) lane-wise. One atan serves both of its
+    // branches: x = num/|den| with num = len·w (w for len = ∞) and den = hh2 + len·d (d for
+    // len = ∞); den > 0: atanc(x)·len/den (1/den for len = ∞); den ≤ 0: (π − atan x)/w, +∞ at
+    // w = 0 (den = 0 gives x = ∞, atan x = π/2: π/(2w), as the scalar form's own branch).
+    SLUT_SIMD4_TARGET static v4d inv_square_integral4(v4d len, v4d hh2, v4d d, v4d w) {
+        const v4d zero = simd4::splat(0.0), one = simd4::splat(1.0);
+        const v4l infinite = len > SLUT_INFINITE_ABOVE;
+        const v4d len_eff = simd4::select(infinite, one, len);
+        const v4d num = len_eff * w;
+        const v4d den = simd4::select(infinite, d, hh2 + len * d);
+        const v4l ahead = den > zero;
+        const v4d x = num / simd4::select(ahead, den, -den);
+        const v4d a = simd4::atan4(x);
+        const v4d forward = simd4::select(x == zero, one, a / x) * (len_eff / den);
+        const v4d backward = simd4::select(w > zero, (SLUT_PI - a) / w, simd4::splat(HUGE_VAL));
+        return simd4::select(len > zero, simd4::select(ahead, forward, backward), zero);
+    }
+
+    // slut_unit_from_warped_runtime lane-wise for the warps with a vector form; false for the others.
+    SLUT_SIMD4_TARGET static bool unit4(const slut_axis &a, double g0, double g1, v4d p, v4d *unit) {
+        v4d warped;
+        switch (a.warp) {
+        case SLUT_WARP_LINEAR: warped = p; break;
+        case SLUT_WARP_LOG: warped = simd4::log4(p); break;
+        case SLUT_WARP_LOG1P: { // Goldberg's form (slut_log1p_goldberg): x > −1 on the axis
+            const v4d x = (p - a.min) / a.scale, u = 1.0 + x;
+            warped = simd4::select(u == 1.0, x, simd4::log4(u) * (x / (u - 1.0)));
+            break;
+        }
+        case SLUT_WARP_SQRT1P: warped = simd4::sqrt4(simd4::max4(1.0 + p, simd4::splat(0.0))); break;
+        case SLUT_WARP_LOGLIN: warped = simd4::log4(p) + p / a.scale; break;
+        default: return false;
+        }
+        const v4d x = (warped - g0) / (g1 - g0);
+        *unit = simd4::select(p <= a.min, simd4::splat(0.0), simd4::select(p >= a.max, simd4::splat(1.0), x));
+        return true;
+    }
+
+    // slut_nl_depth_odds_over_TH(g, sg, L) lane-wise.
+    SLUT_SIMD4_TARGET static v4d depth_odds_over_TH4(v4d g, v4d sg, v4d L) {
+        const v4d d = L + g;
+        return inv_square_integral4(L, simd4::splat(1.0), g, sg) /
+               inv_square_integral4(simd4::splat(HUGE_VAL), d * d + sg * sg, d, sg);
+    }
+
+    // slut_nl_E_base(T, r, S) lane-wise, S finite.
+    SLUT_SIMD4_TARGET static v4d E_base4(v4d T, v4d r, v4d S) {
+        const v4d floor_T = simd4::exp4(-T), rise_T = -simd4::expm1_4(-T);
+        const v4d S_eff = S * (T / (S + T));
+        const v4d x = simd4::select(r > SLUT_INFINITE_ABOVE, S_eff, S_eff * ((1.0 + r) / r));
+        const v4d thin_mid = -simd4::expm1_4(-x) / x;
+        const v4d thin_out = simd4::select(x < SLUT_TINY, simd4::splat(1.0), 1.0 / x);
+        v4d thin = simd4::select((x >= SLUT_TINY) & (x <= 40.0), thin_mid, thin_out);
+        thin = simd4::select(S_eff > 0.0, simd4::select(r > 0.0, thin, simd4::splat(0.0)), simd4::splat(1.0));
+        return floor_T + rise_T * thin;
+    }
+
+    SLUT_SIMD4_TARGET void block(const size_t *index, int lanes) {
+        const NearLightTable &t = table;
+        const bool e4 = !t.thick_only();
+        v4d T, g, r, S, S_over_T, scale, sg;
+        bool vector_lane[4] = {false, false, false, false};
+        for (int l = 0; l < 4; ++l) {
+            const NearLightQuery &q = queries[index[l < lanes ? l : 0]];
+            const slut_nl_params p = params_unchecked(q);
+            T[l] = p.T;
+            g[l] = p.g;
+            r[l] = p.r;
+            S[l] = p.S;
+            S_over_T[l] = p.S_over_T;
+            sg[l] = slut_nl_sin_from_cos(p.g);
+            scale[l] = exit_transmittance(q) * q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr / p.distance_m;
+            vector_lane[l] = l < lanes && p.kind == SLUT_NL_OK && q.sigma_s_per_m > 0.0 && q.intensity_W_per_sr > 0.0 &&
+                             q.length_m > 0.0 && p.distance_m > 0.0 && p.T > 0.0 && t.covers(p.T, p.g, p.r, p.S);
+        }
+        // Lanes the vectors do not serve repeat a served lane's parameters (never stored).
+        int served = -1;
+        for (int l = 0; l < 4; ++l)
+            if (vector_lane[l]) served = l;
+        if (served >= 0)
+            for (int l = 0; l < 4; ++l)
+                if (!vector_lane[l]) {
+                    T[l] = T[served];
+                    g[l] = g[served];
+                    r[l] = r[served];
+                    S[l] = S[served];
+                    S_over_T[l] = S_over_T[served];
+                    sg[l] = sg[served];
+                    scale[l] = scale[served];
+                }
+        v4d unit[4];
+        bool vectors = served >= 0;
+        for (int a = 0; a < 3 && vectors; ++a) {
+            const v4d p = a == 0 ? T : a == 1 ? g : r;
+            vectors = unit4(t.table_.axes[static_cast<size_t>(a)].map, t.cache_.g0[a], t.cache_.g1[a], p, &unit[a]);
+        }
+        if (vectors) {
+            const v4d H_scaled = inv_square_integral4(S_over_T, simd4::splat(1.0), g, sg);
+            v4d base = simd4::splat(1.0);
+            if (e4) { // slut_nl_unit_from_S_between(T, g, S, S_min, S_max)
+                const slut_axis &axis_q = t.table_.axes[3].map;
+                const v4d lo = depth_odds_over_TH4(g, sg, axis_q.min / T), hi = depth_odds_over_TH4(g, sg, axis_q.max / T);
+                unit[3] = simd4::log4(depth_odds_over_TH4(g, sg, S / T) / lo) / simd4::log4(hi / lo);
+                base = E_base4(T, r, S);
+            }
+            v4d stored;
+            for (int l = 0; l < 4; ++l) {
+                const double at[4] = {unit[0][l], unit[1][l], unit[2][l], e4 ? unit[3][l] : 0.0};
+                stored[l] = sample_encoded_at_unit(t.table_, t.values32_, at, 0);
+            }
+            const v4d L = scale * (simd4::exp4(stored) * base) * H_scaled;
+            for (int l = 0; l < lanes; ++l)
+                if (vector_lane[l] && std::isfinite(H_scaled[l])) out[index[l]] = L[l];
+                else vector_lane[l] = false;
+        }
+        for (int l = 0; l < lanes; ++l)
+            if (!vectors || !vector_lane[l]) out[index[l]] = t.radiance(queries[index[l]]);
+    }
+
+    SLUT_SIMD4_TARGET void run(size_t count) {
+        for (size_t first = 0; first < count; first += 4) {
+            const size_t index[4] = {first, first + 1, first + 2, first + 3};
+            block(index, static_cast<int>(count - first < 4 ? count - first : 4));
+        }
+    }
+
+    // One 4-D query (the scalar radiance): its independent transcendentals packed into lanes
+    // of the same vector calls. The slab coordinate's seven inverse-square integrals (inside
+    // and outside at S, S_min and S_max, and H at s/l) as two vector atans, the three axis
+    // warps' logs and the coordinate's two as two vector logs, the decoding exp with e^{−T},
+    // and the value base's two expm1: 6 vector calls for 7 atan, 5 log, 2 exp and 2 expm1. The
+    // same arithmetic as NearLightTable::E and assemble otherwise. False (nothing computed)
+    // where the scalar path must answer: outside the table, zero radiance, H infinite.
+    SLUT_SIMD4_TARGET static bool e4_radiance(const NearLightTable &t, const NearLightQuery &q, const slut_nl_params &p,
+                                              double *L) {
+        if (!(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0) || !(p.distance_m > 0.0) ||
+            !(p.T > 0.0) || !t.covers(p.T, p.g, p.r, p.S))
+            return false;
+        const slut_axis *axis[3] = {&t.table_.axes[0].map, &t.table_.axes[1].map, &t.table_.axes[2].map};
+        const slut_axis &axis_q = t.table_.axes[3].map;
+        const double param[3] = {p.T, p.g, p.r};
+        v4d log_arg = simd4::splat(1.0);
+        for (int a = 0; a < 3; ++a) {
+            const int warp = axis[a]->warp;
+            if (warp == SLUT_WARP_LOG || warp == SLUT_WARP_LOGLIN) log_arg[a] = param[a];
+            else if (warp == SLUT_WARP_LOG1P) log_arg[a] = 1.0 + (param[a] - axis[a]->min) / axis[a]->scale;
+            else if (warp != SLUT_WARP_LINEAR && warp != SLUT_WARP_SQRT1P) return false;
+        }
+        const double T = p.T, g = p.g, sg = slut_nl_sin_from_cos(g);
+        const v4d lengths = {p.S / T, axis_q.min / T, axis_q.max / T, p.S_over_T};
+        const v4d inside = inv_square_integral4(lengths, simd4::splat(1.0), simd4::splat(g), simd4::splat(sg));
+        const v4d d = lengths + g;
+        const v4d outside = inv_square_integral4(simd4::splat(HUGE_VAL), d * d + sg * sg, d, simd4::splat(sg));
+        const double H_scaled = inside[3];
+        if (!std::isfinite(H_scaled)) return false;
+        const v4d odds = inside / outside; // lanes 0–2: S, S_min, S_max
+        const v4d logs = simd4::log4(log_arg);
+        const v4d ratio_logs = simd4::log4(v4d{odds[0] / odds[1], odds[2] / odds[1], 1.0, 1.0});
+        double unit[4];
+        for (int a = 0; a < 3; ++a) { // slut_unit_from_warped_runtime with the log given
+            const slut_axis &ax = *axis[a];
+            const double x = param[a];
+            double warped;
+            switch (ax.warp) {
+            case SLUT_WARP_LOG: warped = logs[a]; break;
+            case SLUT_WARP_LOGLIN: warped = logs[a] + x / ax.scale; break;
+            case SLUT_WARP_LOG1P: {
+                const double y = (x - ax.min) / ax.scale, u = 1.0 + y;
+                warped = (u == 1.0) ? y : logs[a] * (y / (u - 1.0));
+                break;
+            }
+            case SLUT_WARP_SQRT1P: warped = std::sqrt(std::fmax(1.0 + x, 0.0)); break;
+            default: warped = x;
+            }
+            unit[a] = !(x > ax.min) ? 0.0 : x >= ax.max ? 1.0 : (warped - t.cache_.g0[a]) / (t.cache_.g1[a] - t.cache_.g0[a]);
+        }
+        unit[3] = ratio_logs[0] / ratio_logs[1];
+        const double stored = sample_encoded_at_unit(t.table_, t.values32_, unit, 0);
+        // slut_nl_E_base(T, r, S): floor e^{−T}, rise −expm1(−T), E_thin(r, S_eff)
+        const double r = p.r, S_eff = slut_nl_base_depth(T, p.S);
+        const double x = (r > SLUT_INFINITE_ABOVE) ? S_eff : S_eff * ((1.0 + r) / r);
+        const v4d e = simd4::exp4(v4d{stored, -T, 0.0, 0.0});
+        const v4d em1 = simd4::expm1_4(v4d{-T, -x, 0.0, 0.0});
+        double thin;
+        if (!(S_eff > 0.0)) thin = 1.0;
+        else if (!(r > 0.0)) thin = 0.0;
+        else thin = SLUT_NL_THIN_NEEDS_EXPM1(x) ? -em1[1] / x : SLUT_NL_THIN_OF_X_WITHOUT_EXPM1(x);
+        const double E = e[0] * SLUT_NL_BASE_OF_THIN(e[1], -em1[0], thin);
+        *L = exit_transmittance(q) * q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * E * H_scaled / p.distance_m;
+        return true;
+    }
+};
+
+namespace {
+bool radiance_e4_simd(const NearLightTable &table, const NearLightQuery &q, const slut_nl_params &p, double *L) {
+    return NearLightBatch::e4_radiance(table, q, p, L);
+}
+} // namespace
+#endif
+
+void NearLightTable::radiance(const NearLightQuery *queries, size_t count, double *out) const {
+    for (size_t i = 0; i < count; ++i) {
+        try {
+            check_near_light_query(queries[i]);
+            params_unchecked(queries[i]);
+        } catch (const std::invalid_argument &e) {
+            throw std::invalid_argument("query " + std::to_string(i) + ": " + e.what());
+        }
+    }
+#if SLUT_HAVE_SIMD4
+    if (simd4::available()) {
+        NearLightBatch{*this, queries, out}.run(count);
+        return;
+    }
+#endif
+    for (size_t i = 0; i < count; ++i) out[i] = radiance(queries[i]);
 }
 
 } // namespace scatterlut

@@ -11,6 +11,8 @@
 #include "scatterlut/sampler.hpp"
 #include "scatterlut/table.hpp"
 
+struct slut_airlight_geometry; // kernels/slut_airlight.h
+
 namespace scatterlut {
 
 // One airlight query in physical units.
@@ -34,6 +36,15 @@ AirlightQuery airlight_query_from_points(const double viewer_m[3], const double 
 // (γ = 0 and s ≥ D: the integral diverges); 0 for σ_s = 0, I0 = 0 or s = 0; never NaN,
 // never negative. Throws std::invalid_argument for negative or NaN inputs.
 double airlight_radiance_exact(const AirlightQuery &q); // quadrature, ~1e-13 relative
+
+// The closed forms engines use instead of a table (Macklin 2010; kernels/slut_airlight.h):
+// the radiance without extinction, σ_s/(4π)·I0·(atan((s + b)/h) − atan(b/h))/h with
+// b = −D cos γ, h = D sin γ (exact as σ_t → 0, an overestimate otherwise), and the same
+// times e^{−σ_t D} (still ≥ the exact radiance: the extra path x + d(x) − D is ignored).
+// Same units, limits and checks as airlight_radiance_exact (+inf through the light, 0 for
+// σ_s = 0, I0 = 0 or s = 0, never NaN). Allocation-free and thread-safe.
+double airlight_radiance_no_extinction(const AirlightQuery &q);
+double airlight_radiance_no_extinction_attenuated(const AirlightQuery &q);
 
 // A loaded F table (kind "airlight_F"): axis 0 u ∈ [0, u_max], axis 1 w = π/2 − v ∈
 // [w_min, π/2], channel 0 = ln G̃ (see kernels/slut_airlight.h).
@@ -61,18 +72,34 @@ public:
     // cancel).
     double radiance(const AirlightQuery &q) const;
 
+    // The same for `count` queries: out[i] is radiance(queries[i]) to within 1e-12 relative
+    // (the same paths and rules; where the CPU has AVX2 and FMA, four queries at a time with
+    // glibc's libmvec exp, log, atan, sin and cos, ≤ 4 ulp, in place of libm's). Every query
+    // is checked before anything is written: a bad one throws std::invalid_argument naming
+    // its index and field, and `out` is left as it was. Allocation-free and thread-safe
+    // (const, no state); `out` must not overlap `queries`.
+    void radiance(const AirlightQuery *queries, size_t count, double *out) const;
+
     const Table &table() const { return table_; }
     double u_max() const { return u_max_; }
     double w_min() const { return w_min_; }
 
 private:
+    friend struct AirlightBatch; // the batch radiance (airlight.cpp)
     double unit_u(double u) const;                                     // u's unit coordinate
     double scaled_tail_at(double unit_u, double u, double w, double a) const; // G̃ given it
+    // The radiance's two paths (airlight.cpp), from the geometry without its e^{−σ_t D}.
+    double one_panel_radiance(const slut_airlight_geometry &g) const;
+    double two_sample_radiance(const slut_airlight_geometry &g) const;
+    double ln_gs_at(int cell_u, double frac_u, double unit_w) const; // ln G̃ from values32_
     Table table_;
     SamplerCache cache_; // of table_
     std::vector<float> values32_; // table_.values as floats when exact (sample_encoded_at_unit)
     double u_max_ = 0;
     double w_min_ = 0;
+    int count_u_ = 0, count_w_ = 0; // nodes per axis
+    size_t channels_ = 1;
+    bool fast_lookup_ = false; // values32_ present and the axes' warps LOG1P (u), ASINH_COT (w)
 };
 
 // Throws std::invalid_argument naming the first invalid field.
