@@ -1,5 +1,7 @@
 #include "eval.hpp"
 
+#include "json_guard.hpp"
+
 #include <cmath>
 #include <istream>
 #include <limits>
@@ -131,23 +133,59 @@ nlohmann::json eval_query(const nlohmann::json &query, const EvalTables &tables)
     return out;
 }
 
+namespace {
+
+// Reads one line (without its '\n') into `line`, keeping at most kMaxEvalLineBytes: the
+// rest of a longer line is read and dropped, `too_long` set. False at end of input.
+bool read_bounded_line(std::istream &in, std::string &line, bool &too_long) {
+    line.clear();
+    too_long = false;
+    std::streambuf *buf = in.rdbuf();
+    bool any = false;
+    for (;;) {
+        const int c = buf->sbumpc();
+        if (c == std::char_traits<char>::eof()) {
+            in.setstate(std::ios::eofbit);
+            return any;
+        }
+        any = true;
+        if (c == '\n') return true;
+        if (line.size() < kMaxEvalLineBytes) line.push_back(static_cast<char>(c));
+        else too_long = true;
+    }
+}
+
+} // namespace
+
 int eval_stream(std::istream &in, std::ostream &out, const EvalTables &tables) {
     std::string line;
     int line_number = 0, errors = 0;
-    while (std::getline(in, line)) {
+    bool too_long = false;
+    while (read_bounded_line(in, line, too_long)) {
         ++line_number;
-        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        const std::string at = "line " + std::to_string(line_number) + ": ";
         nlohmann::json answer;
-        try {
-            answer = eval_query(nlohmann::json::parse(line), tables);
-        } catch (const nlohmann::json::exception &e) {
-            answer = {{"error", "line " + std::to_string(line_number) + ": invalid JSON: " + e.what()}};
+        std::string problem;
+        if (too_long) problem = "longer than " + std::to_string(kMaxEvalLineBytes) + " bytes (not read)";
+        else if (line.find_first_not_of(" \t\r") == std::string::npos) problem = "blank line, expected a JSON object";
+        else problem = json_text_problem(line, kMaxEvalNesting);
+        if (!problem.empty()) {
+            answer = {{"error", at + problem}};
             ++errors;
-        } catch (const std::exception &e) {
-            answer = {{"error", "line " + std::to_string(line_number) + ": " + e.what()}};
-            ++errors;
+        } else {
+            try {
+                answer = eval_query(nlohmann::json::parse(line), tables);
+            } catch (const nlohmann::json::exception &e) {
+                answer = {{"error", at + "invalid JSON: " + e.what()}};
+                ++errors;
+            } catch (const std::exception &e) {
+                answer = {{"error", at + e.what()}};
+                ++errors;
+            }
         }
-        out << answer.dump() << '\n';
+        // The query is echoed: its strings are valid UTF-8 (checked above); replace keeps a
+        // message quoting the line valid whatever it holds.
+        out << answer.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
         out.flush();
     }
     return errors;

@@ -10,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "embedded_kernels.hpp"
+#include "scatterlut/io.hpp"
 
 // The scenes embedded at build time (host/scenes/*.toml, cmake/embed_kernels.cmake).
 namespace scatterlut::embedded {
@@ -19,6 +20,11 @@ extern const std::size_t kSceneFileCount;
 
 namespace scatterlut {
 namespace {
+
+const char *const kLengthExpected = "a length in [1e-6, 1e6] m";
+const char *const kSigmaExpected = "a coefficient in [0, 1e6] (1/m)";
+const char *const kRelativeErrorExpected =
+    "a relative error on radiance in [1e-9, 0.5] (double-precision quadrature and storage reach ~1e-10)";
 
 // Messages: "FILE:LINE:COL: key 'path': expected …". Every check below goes through one
 // Reader so that each names the file, the place and the key's full dotted path.
@@ -107,8 +113,8 @@ public:
         const toml::array *a = n.as_array();
         if (!a || a->size() != 2) fail(n.source(), key, std::string("expected ") + expect + ", got " + type_name(n));
         Range r;
-        r.min = number_value(*a->get(0), key + "[0]", 0.0, true, HUGE_VAL, "a number > 0 (m)");
-        r.max = number_value(*a->get(1), key + "[1]", 0.0, true, HUGE_VAL, "a number > 0 (m)");
+        r.min = number_value(*a->get(0), key + "[0]", kSceneMinLength_m, false, kSceneMaxLength_m, kLengthExpected);
+        r.max = number_value(*a->get(1), key + "[1]", kSceneMinLength_m, false, kSceneMaxLength_m, kLengthExpected);
         if (r.min > r.max)
             fail(n.source(), key, std::string("expected ") + expect + ", got an inverted range [" + shown(r.min) + ", " +
                                       shown(r.max) + "]");
@@ -146,11 +152,11 @@ SceneMedium read_medium(const Reader &rd, const toml::table &t, const std::strin
     SceneMedium m;
     m.line = static_cast<int>(t.source().begin.line);
     m.name = rd.string(t, "name", path, true, "");
-    m.sigma_s_per_m = rd.number(t, "sigma_s_per_m", path, true, 0, 0.0, false, HUGE_VAL, "a finite number >= 0 (1/m)");
-    m.sigma_a_per_m = rd.number(t, "sigma_a_per_m", path, true, 0, 0.0, false, HUGE_VAL, "a finite number >= 0 (1/m)");
+    m.sigma_s_per_m = rd.number(t, "sigma_s_per_m", path, true, 0, 0.0, false, kSceneMaxSigma_per_m, kSigmaExpected);
+    m.sigma_a_per_m = rd.number(t, "sigma_a_per_m", path, true, 0, 0.0, false, kSceneMaxSigma_per_m, kSigmaExpected);
     m.viewer_inside = rd.boolean(t, "viewer_inside", path, true, false);
-    m.relative_error = rd.number(t, "relative_error", path, false, relative_error, 0.0, true, 0.5,
-                                 "a relative error on radiance in (0, 0.5]");
+    m.relative_error = rd.number(t, "relative_error", path, false, relative_error, kSceneMinRelativeError, false, 0.5,
+                                 kRelativeErrorExpected);
     m.thick = rd.boolean(t, "thick", path, false, false);
     if (const toml::node *n = t.get("thickness_m")) {
         m.thickness_m = rd.range(*n, Reader::join(path, "thickness_m"));
@@ -175,14 +181,15 @@ SceneLight read_light(const Reader &rd, const toml::table &t, const std::string 
     if (l.type == LightType::Point) {
         rd.only_keys(t, path, {"name", "type", "intensity_W_per_sr", "distance_m", "media"});
         l.intensity_W_per_sr =
-            rd.number(t, "intensity_W_per_sr", path, true, 0, 0.0, true, HUGE_VAL, "a finite number > 0 (W/sr)");
+            rd.number(t, "intensity_W_per_sr", path, true, 0, 0.0, true, kSceneMaxIntensity, "a number in (0, 1e30] (W/sr)");
         const toml::node *d = t.get("distance_m");
         if (!d) rd.fail(t.source(), Reader::join(path, "distance_m"), "expected [min, max] in m (missing)");
         l.distance_m = rd.range(*d, Reader::join(path, "distance_m"));
     } else {
         rd.only_keys(t, path, {"name", "type", "irradiance_W_per_m2", "media"});
         l.irradiance_W_per_m2 =
-            rd.number(t, "irradiance_W_per_m2", path, false, 1.0, 0.0, true, HUGE_VAL, "a finite number > 0 (W/m^2)");
+            rd.number(t, "irradiance_W_per_m2", path, false, 1.0, 0.0, true, kSceneMaxIntensity,
+                      "a number in (0, 1e30] (W/m^2)");
     }
     l.name = rd.string(t, "name", path, true, "");
     if (const toml::node *n = t.get("media")) {
@@ -216,6 +223,34 @@ void check_names(const Reader &rd, const toml::table &root, const Scene &s) {
             if (!media.count(s.lights[i].media[k]))
                 rd.fail(root["light"][i]["media"][k].node()->source(), path + ".media[" + std::to_string(k) + "]",
                         "expected the name of a [[medium]], got '" + s.lights[i].media[k] + "'");
+    }
+}
+
+// Optical depths a table can serve (media that scatter): sigma_t times a point light's largest distance (for
+// every medium it lights) or a slab's largest thickness at most kSceneMaxOpticalDepth.
+void check_optical_depths(const Reader &rd, const toml::table &root, const Scene &s) {
+    auto too_deep = [](double sigma_t, double length) { return sigma_t * length > kSceneMaxOpticalDepth; };
+    auto what = [](const SceneMedium &m, double length) {
+        std::ostringstream msg;
+        msg.precision(6);
+        msg << "expected sigma_t * length <= 1e4 optical depths with medium '" << m.name << "' (sigma_t = "
+            << m.sigma_t_per_m() << " 1/m), got " << m.sigma_t_per_m() * length
+            << " (the light would be attenuated below the smallest double)";
+        return msg.str();
+    };
+    for (size_t i = 0; i < s.media.size(); ++i) {
+        const SceneMedium &m = s.media[i];
+        if (m.sigma_s_per_m > 0.0 && m.has_thickness && too_deep(m.sigma_t_per_m(), m.thickness_m.max))
+            rd.fail(root["medium"][i]["thickness_m"].node()->source(), "medium[" + std::to_string(i) + "].thickness_m",
+                    what(m, m.thickness_m.max));
+    }
+    for (size_t i = 0; i < s.lights.size(); ++i) {
+        const SceneLight &l = s.lights[i];
+        if (l.type != LightType::Point) continue;
+        for (const SceneMedium &m : s.media)
+            if (m.sigma_s_per_m > 0.0 && Scene::lights_medium(l, m) && too_deep(m.sigma_t_per_m(), l.distance_m.max))
+                rd.fail(root["light"][i]["distance_m"].node()->source(), "light[" + std::to_string(i) + "].distance_m",
+                        what(m, l.distance_m.max));
     }
 }
 
@@ -260,10 +295,10 @@ Scene parse_scene(const std::string &text, const std::string &source) {
     s.name = rd.string(root, "name", "", false, "");
     if (const toml::table *a = rd.table(root, "accuracy", "")) {
         rd.only_keys(*a, "accuracy", {"relative_error", "max_table_MiB"});
-        s.relative_error = rd.number(*a, "relative_error", "accuracy", false, s.relative_error, 0.0, true, 0.5,
-                                     "a relative error on radiance in (0, 0.5]");
-        s.max_table_MiB = rd.number(*a, "max_table_MiB", "accuracy", false, s.max_table_MiB, 0.0, true, 4096.0,
-                                    "a size in MiB in (0, 4096]");
+        s.relative_error = rd.number(*a, "relative_error", "accuracy", false, s.relative_error, kSceneMinRelativeError,
+                                     false, 0.5, kRelativeErrorExpected);
+        s.max_table_MiB = rd.number(*a, "max_table_MiB", "accuracy", false, s.max_table_MiB, kSceneMinTableMiB, false,
+                                    4096.0, "a size in MiB in [0.01, 4096] (the smallest table takes ~1 KiB)");
     }
     if (const toml::table *v = rd.table(root, "view", "")) {
         rd.only_keys(*v, "view", {"max_view_angle_deg", "max_light_angle_deg"});
@@ -286,16 +321,20 @@ Scene parse_scene(const std::string &text, const std::string &source) {
     });
     s.lights = read_array<SceneLight>(rd, root, "light", read_light);
     check_names(rd, root, s);
+    check_optical_depths(rd, root, s);
     return s;
 }
 
 Scene load_scene_file(const std::string &path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw SceneError(path + ": cannot read the scene file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw SceneError(path + ": cannot read the scene file");
-    return parse_scene(text.str(), path);
+    // A regular file of at most kMaxSceneBytes (what a table's provenance can carry), checked
+    // before reading: a FIFO, /dev/zero or a directory is refused without blocking.
+    std::vector<uint8_t> bytes;
+    try {
+        bytes = detail::read_file(path, kMaxSceneBytes, "a scene file (TOML)");
+    } catch (const LoadError &e) {
+        throw SceneError(e.what());
+    }
+    return parse_scene(std::string(bytes.begin(), bytes.end()), path);
 }
 
 Scene default_scene() {
