@@ -474,6 +474,19 @@ SLUT_FN double slut_airlight_from_gs(const slut_airlight_geometry *g, double gs2
     return g->scale * (slut_airlight_theta_integral_rule(g->c, g->w2, slut_airlight_dv(g), 0) / g->sin_gamma);
 }
 
+/* F(u, v) = ∫_0^v e^{−u tan ξ} dξ (Sun et al. 2005) from two tail samples, whole = G(u, 0)
+ * and tail = G(u, v): F = whole − tail, except where that difference cancels (tail above
+ * half of whole: u·v small, F ≪ G(u, 0), where a table's relative error on G would become
+ * an absolute one on F). There F is integrated directly: it is the θ-integral above with
+ * w2 = π/2, c = u (c sin θ/sin(π/2 − θ) = u tan θ), 8 points per panel, ~1e-13 relative,
+ * for every v down to subnormal ones. tail > whole/2 implies v < π/4 (G(u, v) ≤ π/2 − v),
+ * so the panels stay ≥ π/4 from the pole at θ = π/2 and there are few of them. */
+SLUT_FN double slut_F_from_tails(double u, double v, double whole, double tail) {
+    if (!(v > 0.0)) return 0.0;
+    if (tail <= 0.5 * whole) return whole - tail;
+    return slut_airlight_theta_integral_rule(u, SLUT_PIO2_HI, v, 0);
+}
+
 /* Which representation serves G̃(u, w) for a table covering u ≤ u_max, w ≥ w_min:
  * SLUT_GS_TABLE (interpolate), SLUT_GS_LARGE_U (slut_gs_large_u), SLUT_GS_SMALL_W
  * (slut_gs_small_w). Never a clamp: beyond the table the asymptotic forms are exact

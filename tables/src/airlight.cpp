@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "scatterlut/io.hpp"
 #include "scatterlut/sampler.hpp"
 
 extern "C" {
@@ -100,6 +101,13 @@ AirlightTable::AirlightTable(Table table) : table_(std::move(table)) {
     require(table_.axes[0].map.min == 0.0, "airlight table u axis must start at 0");
     require(std::fabs(table_.axes[1].map.max - 1.5707963267948966) < 1e-12,
             "airlight table w axis must end at pi/2");
+    // G̃ ∈ (0, 1]: a stored ln G̃ above 0 (beyond rounding) or below −1e6 is no airlight value.
+    const size_t stride = table_.channels.size();
+    for (size_t i = 0; i < table_.values.size(); i += stride)
+        require(table_.values[i] >= kMinStoredLn && table_.values[i] <= kLnRoundingSlack,
+                "airlight table: ln G~ = " + std::to_string(table_.values[i]) + " at " +
+                    detail::describe_value(table_, i) +
+                    " is outside the quantity's range (G~ in (0, 1]: ln G~ <= 0): the file is corrupt");
     cache_ = make_sampler_cache(table_);
     values32_ = float_values_if_exact(table_);
     u_max_ = table_.axes[0].map.max;
@@ -145,10 +153,12 @@ double AirlightTable::tail(double u, double v) const {
     return std::exp(-u * tan_v) * w * scaled_tail(u, w, u * tan_v);
 }
 
+// F = G(u, 0) − G(u, v) where that keeps the table's relative accuracy, the direct
+// integral where it would cancel (slut_F_from_tails).
 double AirlightTable::F(double u, double v) const {
-    if (v <= 0.0) return 0.0;
+    if (!(v > 0.0)) return 0.0;
     const double whole = 1.5707963267948966 * scaled_tail(u, 1.5707963267948966, 0.0);
-    return std::fmax(whole - tail(u, v), 0.0);
+    return std::fmax(slut_F_from_tails(u, v, whole, tail(u, v)), 0.0);
 }
 
 // A segment short enough for one panel takes the θ-integral directly (6 exps, more
