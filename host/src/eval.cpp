@@ -25,10 +25,39 @@ double number_field(const nlohmann::json &q, const char *name) {
     throw std::invalid_argument(std::string("field \"") + name + "\" must be a number");
 }
 
-// JSON has no infinity: a non-finite answer is null, with a note saying why.
+// The fields put() answered null for a non-finite value, collected under this key and
+// turned into a "note" by eval_query (never a silent null).
+constexpr const char *kNonFiniteKey = "\x01nonfinite";
+
+// JSON has no infinity: a non-finite answer is null, and eval_query's note says why.
 void put(nlohmann::json &out, const char *name, double value) {
-    if (std::isfinite(value)) out[name] = value;
-    else out[name] = nullptr;
+    if (std::isfinite(value)) {
+        out[name] = value;
+        return;
+    }
+    out[name] = nullptr;
+    out[kNonFiniteKey].push_back({name, std::isnan(value) ? "nan" : value > 0 ? "+inf" : "-inf"});
+}
+
+// One note for the fields answered null: +inf is an overflow of the double range (the
+// airlight's ray through the light has its own note), NaN a value these extreme inputs do
+// not allow in double precision.
+void note_non_finite(nlohmann::json &out) {
+    if (!out.contains(kNonFiniteKey)) return;
+    std::string overflow, nan;
+    for (const auto &f : out[kNonFiniteKey]) {
+        std::string &list = f[1] == "nan" ? nan : overflow;
+        list += (list.empty() ? "" : ", ") + f[0].get<std::string>();
+    }
+    out.erase(kNonFiniteKey);
+    if (out.contains("note")) return;
+    std::string note;
+    if (!overflow.empty())
+        note = "null for " + overflow + ": beyond the largest double (1.8e308), +inf";
+    if (!nan.empty())
+        note += (note.empty() ? "" : "; ") + std::string("null for ") + nan +
+                ": not computable in double precision at these extreme inputs (an intermediate overflows)";
+    out["note"] = note;
 }
 
 void answer_F(const nlohmann::json &q, nlohmann::json &out, const EvalTables &tables) {
@@ -56,7 +85,8 @@ void answer_airlight(const nlohmann::json &q, nlohmann::json &out, const EvalTab
     a.length_m = number_field(q, "length");
     const double exact = airlight_radiance_exact(a); // validates the query
     put(out, "exact", exact);
-    if (std::isinf(exact)) out["note"] = "diverges: the view ray passes through the light";
+    const bool through_light = a.gamma_rad == 0.0 && a.length_m >= a.distance_m;
+    if (through_light) out["note"] = "diverges: the view ray passes through the light";
     if (tables.airlight.empty()) out["table"] = nullptr;
     else put(out, "table", tables.airlight.front().radiance(a));
 }
@@ -130,6 +160,7 @@ nlohmann::json eval_query(const nlohmann::json &query, const EvalTables &tables)
     else if (quantity == "N") answer_N(query, out, tables);
     else if (quantity == "near_light") answer_near_light(query, out, tables);
     else throw std::invalid_argument("unknown quantity \"" + quantity + "\" (expected F, airlight, N or near_light)");
+    note_non_finite(out);
     return out;
 }
 

@@ -168,7 +168,8 @@ double AirlightTable::radiance(const AirlightQuery &q) const {
     slut_airlight_geometry g = setup_near_end(q);
     if (g.kind != 0) return slut_airlight_from_gs(&g, 0.0, 0.0);
     if (slut_airlight_theta_fits_one_panel(&g))
-        return g.scale * (slut_airlight_theta_integral_one_panel(g.c, g.cos_half, g.sin_half, g.tan_dv) / g.sin_gamma);
+        return slut_airlight_scaled(
+            &g, slut_airlight_theta_integral_one_panel(g.c, g.cos_half, g.sin_half, g.tan_dv) / g.sin_gamma);
     slut_airlight_setup_far_end(&g);
     const double at_u = unit_u(g.u);
     const double gs2 = scaled_tail_at(at_u, g.u, g.w2, g.a2);
