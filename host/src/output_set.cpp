@@ -72,7 +72,7 @@ OutputSetCheck check_output_set(const std::string &dir) {
         }
         if (content.size() != m.bytes) {
             check.mismatches.push_back(file + ": " + std::to_string(content.size()) + " bytes, the manifest says " +
-                                       std::to_string(m.bytes));
+                                       std::to_string(m.bytes) + " (not this set's file)");
             continue;
         }
         const uint64_t sum = fnv1a64(content.data(), content.size());
@@ -80,7 +80,7 @@ OutputSetCheck check_output_set(const std::string &dir) {
             char buf[96];
             std::snprintf(buf, sizeof buf, "checksum %016llx, the manifest says %016llx",
                           static_cast<unsigned long long>(sum), static_cast<unsigned long long>(m.fnv1a64));
-            check.mismatches.push_back(file + ": " + buf + " (a file of another run)");
+            check.mismatches.push_back(file + ": " + buf + " (not this set's file)");
         }
     }
     std::error_code ec;

@@ -212,13 +212,14 @@ struct GenerateOptions {
 void prepare_output_directory(const std::string &out_dir) {
     namespace fs = std::filesystem;
     std::error_code ec;
-    fs::path prefix;
-    for (const fs::path &part : fs::path(out_dir)) {
-        prefix /= part;
+    // Every leading part as the user wrote it ("a/b" of "a/b/c"), then the whole path.
+    for (size_t end = out_dir.find('/', 1);; end = out_dir.find('/', end + 1)) {
+        const std::string prefix = out_dir.substr(0, end);
         const fs::file_status st = fs::status(prefix, ec);
         if (fs::exists(st) && !fs::is_directory(st))
-            throw std::invalid_argument("--out '" + out_dir + "': '" + prefix.string() +
+            throw std::invalid_argument("--out '" + out_dir + "': '" + prefix +
                                         "' exists and is not a directory (expected an output directory)");
+        if (end == std::string::npos) break;
     }
     fs::create_directories(out_dir, ec);
     if (ec) throw std::invalid_argument("--out '" + out_dir + "': cannot create the output directory: " + ec.message());

@@ -19,6 +19,8 @@
 #include <system_error>
 
 #include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -1049,12 +1051,30 @@ AtomicFileSet::~AtomicFileSet() {
 
 void AtomicFileSet::add(const std::string &path, const std::vector<uint8_t> &bytes) {
     pending_.reserve(pending_.size() + 1); // no allocation between the write and the push
+    // A final name that is a directory would fail only at its rename, after earlier files
+    // of the set were renamed: refused here, while nothing has moved.
+    struct stat st;
+    if (::lstat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+        throw std::system_error(EISDIR, std::generic_category(),
+                                path + ": is a directory, cannot write the file there (nothing of this set renamed)");
     WrittenTemporary t = write_temporary(path, bytes);
     pending_.push_back(Pending{path, t.tmp, t.slot});
 }
 
 void AtomicFileSet::commit() {
+    // The renames run with SIGINT, SIGTERM and SIGHUP blocked (this thread): a handler that
+    // ends the process must not cut the set in two. A signal that arrives meanwhile is
+    // delivered once the last rename is done.
+    sigset_t terminating, previous;
+    sigemptyset(&terminating);
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&terminating, sig);
+    pthread_sigmask(SIG_BLOCK, &terminating, &previous);
+    struct Restore {
+        sigset_t *mask;
+        ~Restore() { pthread_sigmask(SIG_SETMASK, mask, nullptr); }
+    } restore{&previous};
     std::vector<std::string> dirs;
+    dirs.reserve(pending_.size());
     while (!pending_.empty()) {
         Pending &p = pending_.front();
         if (::rename(p.tmp.c_str(), p.path.c_str()) != 0)
