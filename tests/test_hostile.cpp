@@ -328,6 +328,13 @@ TEST(HostileScene, RangesNoTableCanServeAreRefusedAtReadTimeWithFileLineAndKey) 
         }
         EXPECT_FALSE(fs::exists(dir + "/out")) << "generate wrote before refusing the scene";
     }
+    // A byte 0x01 in a table header (a scene-fuzzer finding that trips an assertion inside
+    // toml++ when built with assertions): a syntax error with file:line:col.
+    const std::string known = SLUT_SOURCE_DIR "/tests/fuzz/known/scene-toml-assert-1";
+    const Bounded syntax = run_bounded("plan --scene " + known);
+    EXPECT_BOUNDED(syntax);
+    EXPECT_EQ(syntax.exit_code, 2);
+    EXPECT_TRUE(contains(syntax.err, known + ":17:3: syntax error: Error while parsing key")) << syntax.err;
     // The bounds themselves are accepted.
     const std::string edge = write_scene(
         dir, "edge.toml",

@@ -40,7 +40,8 @@ public:
 
     // Refuses keys of `table` not in `known`.
     void only_keys(const toml::table &table, const std::string &path, std::initializer_list<const char *> known) const {
-        for (const auto &[key, node] : table) {
+        for (const auto &entry : table) {
+            const auto &key = entry.first; // not a structured binding: lambdas capture it (clang, C++17)
             const bool ok = std::any_of(known.begin(), known.end(), [&](const char *k) { return key.str() == k; });
             if (ok) continue;
             std::string list;
