@@ -335,6 +335,29 @@ TEST(HostileScene, RangesNoTableCanServeAreRefusedAtReadTimeWithFileLineAndKey) 
     EXPECT_BOUNDED(syntax);
     EXPECT_EQ(syntax.exit_code, 2);
     EXPECT_TRUE(contains(syntax.err, known + ":17:3: syntax error: Error while parsing key")) << syntax.err;
+    // Non-ASCII outside strings and comments never reaches toml++ (whose classification of
+    // some such code points is undefined behaviour: a scene-fuzzer finding); inside a string
+    // or a comment it is fine. Invalid UTF-8 is refused with its place.
+    const std::vector<std::pair<std::string, std::string>> texts = {
+        {"\xef\xbb\xbe" + std::string(kFogScene), ":1:1: syntax error: a non-ASCII character outside a string or comment"},
+        {std::string(kFogScene) + "\xc3\xa9 = 1\n", ":14:1: syntax error: a non-ASCII character outside a string or comment"},
+        {std::string(kFogScene) + "x =\xe3\x80\x80" "1\n", ":14:4: syntax error: a non-ASCII character"},
+        {std::string(kFogScene) + "# \xff\n", ":14:3: syntax error: not valid UTF-8"},
+    };
+    for (const auto &[text, where] : texts) {
+        const std::string path = write_scene(dir, "u.toml", text);
+        const Bounded r = run_bounded("plan --scene " + path);
+        EXPECT_BOUNDED(r);
+        EXPECT_EQ(r.exit_code, 2);
+        EXPECT_TRUE(contains(r.err, path + where)) << r.err;
+    }
+    const std::string unicode = write_scene(
+        dir, "unicode.toml",
+        "# brouillard \xc3\xa9pais \xe3\x80\x80 \xef\xbb\xbe\n" +
+            replace_once(kFogScene, "name = \"fog\"\n[accuracy]", "name = \"caf\xc3\xa9 \xef\xbb\xbe '''\"\n[accuracy]"));
+    const Bounded u = run_bounded("plan --scene " + unicode + " --n-u 16 --n-w 8");
+    EXPECT_EQ(u.exit_code, 0) << u.err;
+
     // The bounds themselves are accepted.
     const std::string edge = write_scene(
         dir, "edge.toml",
@@ -360,15 +383,14 @@ TEST(HostileOutput, ASecondRunIntoTheSameDirectoryIsRefusedWhileOneHoldsIt) {
     ASSERT_EQ(run_bounded("generate --out " + dir + " " + kSmallSet).exit_code, 0);
     const auto before = read_bytes(dir + "/airlight_F.slut");
     // This process plays the run in progress: it holds the directory's lock.
-    const int fd = open((dir + "/.scatterlut.lock").c_str(), O_RDWR | O_CREAT, 0666);
+    const int fd = open(dir.c_str(), O_RDONLY | O_DIRECTORY);
     ASSERT_GE(fd, 0);
     ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
     const Bounded r = run_bounded("generate --out " + dir + " --storage f16 " + kSmallSet);
     close(fd);
     EXPECT_BOUNDED(r);
     EXPECT_EQ(r.exit_code, 1);
-    EXPECT_TRUE(contains(r.err, "another scatterlut run is writing '" + dir + "' (it holds " + dir +
-                                    "/.scatterlut.lock); nothing written"))
+    EXPECT_TRUE(contains(r.err, "another scatterlut run is writing '" + dir + "' (it holds the directory's lock); nothing written"))
         << r.err;
     EXPECT_EQ(read_bytes(dir + "/airlight_F.slut"), before);
     // Released: the next run goes ahead.

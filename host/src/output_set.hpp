@@ -1,5 +1,5 @@
 // scatterlut generator — one run's output set: the files `generate` writes into a
-// directory together, the lock that keeps a second run out meanwhile, and the manifest
+// directory together (under a flock on the directory that keeps a second run out), and the manifest
 // (written last) that lets `validate DIR` check that the directory holds one run's set.
 // Layout of the manifest: docs/FORMAT.md, "Output sets".
 #pragma once
@@ -12,7 +12,6 @@ namespace scatterlut {
 
 inline constexpr const char *kManifestName = "manifest.json";
 inline constexpr const char *kManifestMagic = "scatterlut output set";
-inline constexpr const char *kOutputLockName = ".scatterlut.lock";
 inline constexpr uint64_t kMaxManifestBytes = 16u << 20; // scene text ≤ 4 MiB, command line ≤ 1 MiB
 
 // One file the manifest lists.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <initializer_list>
 #include <set>
@@ -10,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "embedded_kernels.hpp"
+#include "json_guard.hpp"
 #include "scatterlut/io.hpp"
 
 // The scenes embedded at build time (host/scenes/*.toml, cmake/embed_kernels.cmake).
@@ -278,7 +280,98 @@ bool Scene::lights_medium(const SceneLight &light, const SceneMedium &medium) {
     return light.media.empty() || std::find(light.media.begin(), light.media.end(), medium.name) != light.media.end();
 }
 
+namespace {
+
+// What toml++ must not see: text that is not valid UTF-8, and a non-ASCII character outside
+// strings and comments (TOML's keys, values and whitespace are ASCII there). toml++ 3.x
+// classifies such a character with a table that reaches an unreachable branch for some
+// code points (U+00A1–U+0499, U+2CDE–U+30D7, U+FBC6–U+FEFE; undefined behaviour in a release
+// build, found by tests/fuzz/fuzz_inputs.cpp), so it is refused here first, as the syntax
+// error it is. Throws SceneError with file:line:column.
+void check_scene_text(const std::string &text, const std::string &source) {
+    enum { Normal, Comment, Basic, Literal, MultiBasic, MultiLiteral } state = Normal;
+    size_t line = 1, column = 1;
+    auto fail = [&](const char *what) {
+        std::ostringstream msg;
+        msg << source << ":" << line << ":" << column << ": syntax error: " << what;
+        throw SceneError(msg.str());
+    };
+    auto starts = [&](size_t i, const char *s) { return text.compare(i, std::strlen(s), s) == 0; };
+    auto escape_at = [&](size_t i) { // a backslash escaping the next ASCII character (not a line end)
+        return text[i] == '\\' && i + 1 < text.size() && static_cast<unsigned char>(text[i + 1]) < 0x80 &&
+               text[i + 1] != '\n';
+    };
+    const size_t n = text.size();
+    for (size_t i = 0; i < n;) {
+        const unsigned char c = static_cast<unsigned char>(text[i]);
+        if (c >= 0x80) {
+            const size_t len = utf8_sequence_length(text, i);
+            if (len == 0) fail("not valid UTF-8");
+            if (state == Normal) fail("a non-ASCII character outside a string or comment (expected ASCII keys and values)");
+            i += len;
+            ++column;
+            continue;
+        }
+        size_t step = 1;
+        switch (state) {
+        case Normal:
+            if (c == '#') {
+                state = Comment;
+            } else if (starts(i, "\"\"\"")) {
+                state = MultiBasic;
+                step = 3;
+            } else if (starts(i, "'''")) {
+                state = MultiLiteral;
+                step = 3;
+            } else if (c == '"') {
+                state = Basic;
+            } else if (c == '\'') {
+                state = Literal;
+            }
+            break;
+        case Comment:
+            if (c == '\n') state = Normal;
+            break;
+        case Basic:
+            if (escape_at(i)) step = 2;
+            else if (c == '"' || c == '\n') state = Normal;
+            break;
+        case Literal:
+            if (c == '\'' || c == '\n') state = Normal;
+            break;
+        case MultiBasic:
+            if (escape_at(i)) {
+                step = 2;
+            } else if (starts(i, "\"\"\"")) {
+                state = Normal;
+                step = 3;
+                while (i + step < n && step < 5 && text[i + step] == '"') ++step; // up to two quotes of content
+            }
+            break;
+        case MultiLiteral:
+            if (starts(i, "'''")) {
+                state = Normal;
+                step = 3;
+                while (i + step < n && step < 5 && text[i + step] == '\'') ++step;
+            }
+            break;
+        }
+        for (size_t k = 0; k < step; ++k) {
+            if (text[i + k] == '\n') {
+                ++line;
+                column = 1;
+            } else {
+                ++column;
+            }
+        }
+        i += step;
+    }
+}
+
+} // namespace
+
 Scene parse_scene(const std::string &text, const std::string &source) {
+    check_scene_text(text, source);
     toml::table root;
     try {
         root = toml::parse(text, source);

@@ -225,23 +225,24 @@ void prepare_output_directory(const std::string &out_dir) {
     if (ec) throw std::invalid_argument("--out '" + out_dir + "': cannot create the output directory: " + ec.message());
 }
 
-// An exclusive, non-blocking flock on OUT/.scatterlut.lock for the whole run: a second
-// generate into the same directory is refused at once (the lock file stays; the kernel
-// releases the lock when this process ends, however it ends).
+// An exclusive, non-blocking flock on the output directory itself for the whole run: a
+// second generate into the same directory is refused at once. No lock file: the directory
+// holds only the run's files, and the kernel releases the lock when this process ends,
+// however it ends.
 class OutputLock {
 public:
-    explicit OutputLock(const std::string &out_dir) : path_(out_dir + "/" + kOutputLockName) {
-        fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0666);
+    explicit OutputLock(const std::string &out_dir) {
+        fd_ = ::open(out_dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
         if (fd_ < 0)
-            throw std::invalid_argument("--out '" + out_dir + "': cannot create the lock file " + path_ + ": " +
+            throw std::invalid_argument("--out '" + out_dir + "': cannot open the output directory: " +
                                         std::strerror(errno));
         if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
             const int err = errno;
             ::close(fd_);
             if (err == EWOULDBLOCK)
-                throw std::runtime_error("another scatterlut run is writing '" + out_dir + "' (it holds " + path_ +
-                                         "); nothing written");
-            throw std::runtime_error(path_ + ": cannot lock: " + std::strerror(err));
+                throw std::runtime_error("another scatterlut run is writing '" + out_dir +
+                                         "' (it holds the directory's lock); nothing written");
+            throw std::runtime_error(out_dir + ": cannot lock the output directory: " + std::strerror(err));
         }
     }
     ~OutputLock() { ::close(fd_); }
@@ -249,7 +250,6 @@ public:
     OutputLock &operator=(const OutputLock &) = delete;
 
 private:
-    std::string path_;
     int fd_ = -1;
 };
 
@@ -300,6 +300,10 @@ void write_output_set(const ScenePlan &plan, const std::string &out_dir, const s
 int run_generate(const GenerateOptions &opt, const std::string &command_line) {
     ScenePlan plan = make_plan(opt.scene, load(opt.scene));
     const std::string out_dir = opt.out_dir.empty() ? plan.scene.output.directory : opt.out_dir;
+    if (plan.tables.empty()) { // nothing to generate: nothing written, not even the directory
+        print_text(plan);
+        return 0;
+    }
     prepare_output_directory(out_dir);
     const OutputLock lock(out_dir); // held until every file of this run is in place
     resolve_on_device(plan, opt.scene.device, command_line);
