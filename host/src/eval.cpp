@@ -53,7 +53,7 @@ void note_non_finite(nlohmann::json &out) {
     if (out.contains("note")) return;
     std::string note;
     if (!overflow.empty())
-        note = "null for " + overflow + ": beyond the largest double (1.8e308), +inf";
+        note = "null for " + overflow + ": beyond the largest double (1.8e308), infinite";
     if (!nan.empty())
         note += (note.empty() ? "" : "; ") + std::string("null for ") + nan +
                 ": not computable in double precision at these extreme inputs (an intermediate overflows)";
@@ -155,6 +155,7 @@ nlohmann::json eval_query(const nlohmann::json &query, const EvalTables &tables)
         throw std::invalid_argument("missing string field \"quantity\" (F, airlight, N or near_light)");
     const std::string quantity = query.at("quantity").get<std::string>();
     nlohmann::json out = query;
+    out.erase(kNonFiniteKey); // put()'s bookkeeping key, never a query's
     if (quantity == "F") answer_F(query, out, tables);
     else if (quantity == "airlight") answer_airlight(query, out, tables);
     else if (quantity == "N") answer_N(query, out, tables);
