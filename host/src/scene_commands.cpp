@@ -171,9 +171,7 @@ nlohmann::json to_json(const ScenePlan &plan) {
 }
 
 // The resolution search of every table on the device selected by `selector`.
-void resolve_on_device(ScenePlan &plan, const std::string &selector, const std::string &command_line) {
-    if (plan.tables.empty()) return; // nothing to generate: no device needed
-    Device device(selector);
+void resolve_with(ScenePlan &plan, Device &device, const std::string &command_line) {
     std::cerr << "device: " << device.info().describe() << "\n";
     Provenance provenance;
     provenance.generator_version = generator_version();
@@ -184,6 +182,12 @@ void resolve_on_device(ScenePlan &plan, const std::string &selector, const std::
     std::function<void(const std::string &, double)> on_progress;
     if (progress.enabled) on_progress = [&](const std::string &label, double f) { progress(label, f); };
     resolve_plan(plan, device, provenance, on_progress);
+}
+
+void resolve_on_device(ScenePlan &plan, const std::string &selector, const std::string &command_line) {
+    if (plan.tables.empty()) return; // nothing to generate: no device needed
+    Device device(selector);
+    resolve_with(plan, device, command_line);
 }
 
 // ---------------------------------------------------------------- plan
@@ -304,9 +308,10 @@ int run_generate(const GenerateOptions &opt, const std::string &command_line) {
         print_text(plan);
         return 0;
     }
+    Device device(opt.scene.device); // a --device naming no device is refused before anything is created
     prepare_output_directory(out_dir);
     const OutputLock lock(out_dir); // held until every file of this run is in place
-    resolve_on_device(plan, opt.scene.device, command_line);
+    resolve_with(plan, device, command_line);
     print_text(plan);
     // Only now, with every table generated and measured, is anything written: all files of
     // the run to temporaries, then renamed together (an error or a signal before leaves the
