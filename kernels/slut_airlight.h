@@ -262,8 +262,11 @@ SLUT_FN double slut_gs_series_u_min(double w) {
  * σ_t D² sin² γ/(d − x) for x < 0. */
 typedef struct slut_airlight_geometry {
     int kind;
-    double scale;      /* σ_s/(4π)·I0·2e^{−σ_t D}/D (slut_airlight_setup_near_end)         */
+    double scale;      /* σ_s/(4π)·I0·2e^{−σ_t D}/D (slut_airlight_set_scale)               */
+    double log_scale;  /* ln scale, set only where scale is not a normal double (0, subnormal or
+                          +∞ by overflow): slut_airlight_scaled multiplies in logarithms there */
     double scale_unattenuated; /* σ_s/(4π)·I0·2/D: scale = scale_unattenuated·e^{−optical_distance} */
+    double log_scale_unattenuated; /* ln scale_unattenuated, set only where that is not a normal double */
     double optical_distance;   /* σ_t D                                                    */
     double sin_gamma;  /* sin γ, ≥ 1e-300 (exact 0 is nudged; the limits below are finite) */
     double sin_half;   /* sin(γ/2) = cos w2                                                 */
@@ -296,12 +299,18 @@ SLUT_FN void slut_airlight_setup_near_end_unscaled(double sigma_s, double sigma_
     g->kind = 0;
     if (!(sigma_s > 0.0) || !(intensity > 0.0) || !(s > 0.0)) { g->kind = 1; return; }
     if (!(sin_half > 0.0) && s >= D) { g->kind = 2; return; }
+    /* σ_t D ≥ 1e300: e^{−σ_t D} is 0 against any finite factor (the limit, not an underflow
+     * artefact), and c, u would overflow into ∞·0 in the integrands. */
+    if (!(sigma_t * D < 1e300)) { g->kind = 1; return; }
     double sg = fmax(2.0 * sin_half * cos_half, 1e-300);
     double cos_gamma = (cos_half - sin_half) * (cos_half + sin_half);
     g->sin_gamma = sg;
     g->sin_half = sin_half;
     g->cos_half = cos_half;
     g->scale_unattenuated = sigma_s * SLUT_INV_4PI * intensity * 2.0 / D;
+    g->log_scale_unattenuated = 0.0;
+    if (!(g->scale_unattenuated >= SLUT_DBL_MIN_NORMAL && g->scale_unattenuated <= SLUT_DBL_MAX)) /* σ_s·I0/D beyond range */
+        g->log_scale_unattenuated = log(sigma_s) + log(SLUT_INV_4PI * 2.0) + log(intensity) - log(D);
     g->optical_distance = sigma_t * D;
     g->u = sigma_t * D * sg;
     g->w2 = w2;
@@ -314,21 +323,51 @@ SLUT_FN void slut_airlight_setup_near_end_unscaled(double sigma_s, double sigma_
         g->tan_dv = cos_half / sin_half;
         return;
     }
-    /* d(s)² = (s − D)² + 4sD sin²(γ/2); Δ = s + d − D = s + (d² − D²)/(d + D). */
-    double d_far = sqrt((s - D) * (s - D) + 4.0 * s * D * sin_half * sin_half);
+    /* d(s)² = (s − D)² + 4sD sin²(γ/2); Δ = s + d − D = s + s(s − 2D cos γ)/(d + D). Lengths
+     * beyond [1e-150, 1e150] would under- or overflow in the squares: there d is computed in
+     * units of max(s, D) and Δ's quotient without s² (same value, other rounding). */
+    double m = fmax(s, D);
+    int moderate = m >= 1e-150 && m <= 1e150;
+    double d_far = moderate ? sqrt((s - D) * (s - D) + 4.0 * s * D * sin_half * sin_half)
+                            : m * sqrt(((s - D) / m) * ((s - D) / m) + 4.0 * (s / m) * (D / m) * sin_half * sin_half);
     double x = s - D * cos_gamma, ds = D * sg;
     double y = D - s * cos_gamma, ss = s * sg;
     g->tan_w1 = (x >= 0.0) ? ds / (d_far + x) : (d_far - x) / ds;
     g->a1 = sigma_t * ((x >= 0.0) ? x + d_far : ds * (ds / (d_far - x)));
     g->tan_dv = (y >= 0.0) ? ss / (d_far + y) : (d_far - y) / ss;
-    g->optical_delta = sigma_t * fmax(s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D), 0.0);
+    g->optical_delta = sigma_t * fmax(moderate ? s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D)
+                                               : s + s * ((s - 2.0 * D * cos_gamma) / (d_far + D)),
+                                      0.0);
+}
+
+/* scale = scale_unattenuated·e^{−σ_t D}, and its logarithm where the product is not a normal
+ * double (σ_s·I0 overflowing, e^{−σ_t D} underflowing): slut_airlight_scaled then multiplies
+ * in logarithms and still gives the limit. */
+SLUT_FN void slut_airlight_set_scale(slut_airlight_geometry *g) {
+    if (g->kind != 0) return;
+    g->scale = g->scale_unattenuated * exp(-g->optical_distance);
+    g->log_scale = 0.0;
+    if (!(g->scale >= SLUT_DBL_MIN_NORMAL && g->scale <= SLUT_DBL_MAX)) /* under- or overflowed */
+        g->log_scale = ((g->log_scale_unattenuated != 0.0) ? g->log_scale_unattenuated : log(g->scale_unattenuated)) -
+                       g->optical_distance;
+}
+
+/* Where a caller may form scale·ratio as plain products with e^{−σ_t D} folded into its own
+ * exponentials (the runtime's fast paths, tables/src/airlight.cpp): σ_s·I0·2/(4πD) within
+ * [1e-100, 1e100], σ_t D ≤ 300 and D, s within [1e-100, 1e100] (s = ∞ allowed) keep every
+ * factor and product a normal double. Elsewhere slut_airlight_set_scale and
+ * slut_airlight_scaled (logarithms) serve. */
+SLUT_FN int slut_airlight_scale_is_plain(const slut_airlight_geometry *g, double distance, double length) {
+    return g->scale_unattenuated >= 1e-100 && g->scale_unattenuated <= 1e100 && g->optical_distance <= 300.0 &&
+           distance >= 1e-100 && distance <= 1e100 && length >= 1e-100 &&
+           (length <= 1e100 || length > SLUT_INFINITE_ABOVE);
 }
 
 SLUT_FN void slut_airlight_setup_near_end(double sigma_s, double sigma_a, double intensity, double distance,
                                           double sin_half, double cos_half, double w2, double length,
                                           slut_airlight_geometry *g) {
     slut_airlight_setup_near_end_unscaled(sigma_s, sigma_a, intensity, distance, sin_half, cos_half, w2, length, g);
-    if (g->kind == 0) g->scale = g->scale_unattenuated * exp(-g->optical_distance);
+    slut_airlight_set_scale(g);
 }
 
 /* w1 and e^{−σ_t Δ} from tan w1 and σ_t Δ (slut_airlight_setup_near_end); dv is left to
@@ -521,12 +560,21 @@ SLUT_FN double slut_airlight_no_extinction_attenuated(double sigma_s, double sig
     return L0 * exp(-(sigma_s + sigma_a) * distance);
 }
 
+/* scale·ratio (ratio ≥ 0): a product where scale is a normal double, else in logarithms,
+ * so that a scale beyond the double range (σ_s·I0 overflowing, e^{−σ_t D} underflowing)
+ * still gives the limit: 0, a finite value, or +∞ where the radiance itself overflows. */
+SLUT_FN double slut_airlight_scaled(const slut_airlight_geometry *g, double ratio) {
+    if (g->scale >= SLUT_DBL_MIN_NORMAL && g->scale <= SLUT_DBL_MAX) return g->scale * ratio;
+    if (!(ratio > 0.0)) return 0.0;
+    return exp(g->log_scale + log(ratio));
+}
+
 /* Exact airlight radiance (W/(m²·sr) for I0 in W/sr, coefficients in 1/m, lengths in m)
  * by the θ-integral: independent of any table, ~1e-13 relative. */
 SLUT_FN double slut_airlight_exact(const slut_airlight_geometry *g) {
     if (g->kind == 1) return 0.0;
     if (g->kind == 2) return SLUT_HUGE_VAL;
-    return g->scale * (slut_airlight_theta_integral(g->c, g->w2, g->dv) / g->sin_gamma);
+    return slut_airlight_scaled(g, slut_airlight_theta_integral(g->c, g->w2, g->dv) / g->sin_gamma);
 }
 
 /* Radiance from two samples of G̃ (at the viewer end and at the far end), falling back to
@@ -540,8 +588,21 @@ SLUT_FN double slut_airlight_from_gs(const slut_airlight_geometry *g, double gs2
     if (g->kind == 2) return SLUT_HUGE_VAL;
     double viewer_term = (g->w2 / g->sin_gamma) * gs2;
     double far_term = (g->w1 > 0.0) ? g->far_attenuation * (g->w1 / g->sin_gamma) * gs1 : 0.0;
-    if (far_term <= 0.5 * viewer_term) return g->scale * (viewer_term - far_term);
-    return g->scale * (slut_airlight_theta_integral_rule(g->c, g->w2, slut_airlight_dv(g), 0) / g->sin_gamma);
+    if (far_term <= 0.5 * viewer_term) return slut_airlight_scaled(g, viewer_term - far_term);
+    return slut_airlight_scaled(g, slut_airlight_theta_integral_rule(g->c, g->w2, slut_airlight_dv(g), 0) / g->sin_gamma);
+}
+
+/* F(u, v) = ∫_0^v e^{−u tan ξ} dξ (Sun et al. 2005) from two tail samples, whole = G(u, 0)
+ * and tail = G(u, v): F = whole − tail, except where that difference cancels (tail above
+ * half of whole: u·v small, F ≪ G(u, 0), where a table's relative error on G would become
+ * an absolute one on F). There F is integrated directly: it is the θ-integral above with
+ * w2 = π/2, c = u (c sin θ/sin(π/2 − θ) = u tan θ), 8 points per panel, ~1e-13 relative,
+ * for every v down to subnormal ones. tail > whole/2 implies v < π/4 (G(u, v) ≤ π/2 − v),
+ * so the panels stay ≥ π/4 from the pole at θ = π/2 and there are few of them. */
+SLUT_FN double slut_F_from_tails(double u, double v, double whole, double tail) {
+    if (!(v > 0.0)) return 0.0;
+    if (tail <= 0.5 * whole) return whole - tail;
+    return slut_airlight_theta_integral_rule(u, SLUT_PIO2_HI, v, 0);
 }
 
 /* Which representation serves G̃(u, w) for a table covering u ≤ u_max, w ≥ w_min:

@@ -91,6 +91,8 @@ SLUT_FN void slut_check_failed(const char *file, int line, const char *condition
 #define SLUT_DOUBLE(x) ((double)(x))
 #define SLUT_INFINITE_ABOVE 1e300 /* a length, S or r above this is +∞ */
 #define SLUT_TINY 1e-300          /* below this an argument counts as 0 */
+#define SLUT_DBL_MIN_NORMAL 2.2250738585072014e-308 /* smallest normal double */
+#define SLUT_DBL_MAX 1.7976931348623157e+308        /* largest finite double */
 
 /* π/2 split so that π/2 − v is exact for v near π/2 (Sterbenz, plus the tail). */
 #define SLUT_PI 3.14159265358979323846

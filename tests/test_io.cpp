@@ -1063,6 +1063,7 @@ struct Corruption {
     const char *name; // file name in the temp dir; the extension picks the format
     Bytes bytes;
     std::string message; // what the reason must say (after the file name)
+    int exit_code = 2;   // 1 for a checksum failure: the file was read, and is corrupt
 };
 
 std::vector<Corruption> corruptions() {
@@ -1075,7 +1076,7 @@ std::vector<Corruption> corruptions() {
     out.push_back({"magic.slut", b, "not a scatterlut binary table: expected magic 53 4c 55 54 54 42 4c 00"});
     b = good;
     b[b.size() - 5] ^= 0x10;
-    out.push_back({"flipped.slut", b, "payload checksum mismatch"});
+    out.push_back({"flipped.slut", b, "payload checksum mismatch", 1});
     File f = parse(good);
     set_nested(f, kAxisTag, 0, 7, le_u32(1000000));
     set_nested(f, kAxisTag, 1, 7, le_u32(1000000));
@@ -1110,7 +1111,8 @@ std::vector<Corruption> corruptions() {
 } // namespace
 
 // Each corruption of docs/FORMAT.md §2.6/§4.2 through the executable: exit 2 from
-// `validate` (text and --json) and `inspect`, the reason on stderr as "scatterlut: FILE:
+// `validate` (text and --json) and `inspect` (exit 1 and FAIL for a checksum mismatch: a
+// file read but corrupt), the reason on stderr as "scatterlut: FILE:
 // reason", and validate's report naming the file UNREADABLE.
 TEST(CliHostile, ValidateAndInspectExit2WithTheReason) {
     TempDir dir;
@@ -1119,17 +1121,18 @@ TEST(CliHostile, ValidateAndInspectExit2WithTheReason) {
         const std::string path = dir.path + "/" + c.name;
         write_all(path, c.bytes);
         const std::string reason = path + ": " + c.message;
+        const char *status = c.exit_code == 1 ? "FAIL" : "UNREADABLE";
         const auto v = slut_test::run_scatterlut("validate " + path);
-        EXPECT_EQ(v.exit_code, 2) << v.out << v.err;
+        EXPECT_EQ(v.exit_code, c.exit_code) << v.out << v.err;
         EXPECT_NE(v.err.find(reason), std::string::npos) << v.err;
-        EXPECT_NE(v.out.find(path + ": UNREADABLE"), std::string::npos) << v.out;
+        EXPECT_NE(v.out.find(path + ": " + status), std::string::npos) << v.out;
         const auto j = slut_test::run_scatterlut("validate --json " + path);
-        EXPECT_EQ(j.exit_code, 2);
+        EXPECT_EQ(j.exit_code, c.exit_code);
         const nlohmann::json doc = nlohmann::json::parse(j.out);
-        EXPECT_EQ(doc.at("status"), "UNREADABLE");
+        EXPECT_EQ(doc.at("status"), status);
         EXPECT_NE(doc.at("message").get<std::string>().find(reason), std::string::npos) << j.out;
         const auto i = slut_test::run_scatterlut("inspect " + path);
-        EXPECT_EQ(i.exit_code, 2) << i.out;
+        EXPECT_EQ(i.exit_code, c.exit_code) << i.out;
         EXPECT_NE(i.err.find("scatterlut: " + reason), std::string::npos) << i.err;
         EXPECT_TRUE(i.out.empty()) << i.out;
     }

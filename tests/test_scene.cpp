@@ -109,7 +109,9 @@ TEST(SceneGenerate, ExamplesValidateAtThePredictedError) {
             continue;
         }
         std::vector<std::string> files;
-        for (const auto &entry : std::filesystem::directory_iterator(dir)) files.push_back(entry.path().string());
+        EXPECT_TRUE(std::filesystem::is_regular_file(dir + "/manifest.json")) << e.file << ": the run's manifest";
+        for (const auto &entry : std::filesystem::directory_iterator(dir))
+            if (entry.path().filename() != "manifest.json") files.push_back(entry.path().string());
         std::set<std::string> stems;
         std::string args;
         for (const std::string &f : files) {

@@ -1,5 +1,7 @@
 #include "eval.hpp"
 
+#include "json_guard.hpp"
+
 #include <cmath>
 #include <istream>
 #include <limits>
@@ -23,10 +25,39 @@ double number_field(const nlohmann::json &q, const char *name) {
     throw std::invalid_argument(std::string("field \"") + name + "\" must be a number");
 }
 
-// JSON has no infinity: a non-finite answer is null, with a note saying why.
+// The fields put() answered null for a non-finite value, collected under this key and
+// turned into a "note" by eval_query (never a silent null).
+constexpr const char *kNonFiniteKey = "\x01nonfinite";
+
+// JSON has no infinity: a non-finite answer is null, and eval_query's note says why.
 void put(nlohmann::json &out, const char *name, double value) {
-    if (std::isfinite(value)) out[name] = value;
-    else out[name] = nullptr;
+    if (std::isfinite(value)) {
+        out[name] = value;
+        return;
+    }
+    out[name] = nullptr;
+    out[kNonFiniteKey].push_back({name, std::isnan(value) ? "nan" : value > 0 ? "+inf" : "-inf"});
+}
+
+// One note for the fields answered null: +inf is an overflow of the double range (the
+// airlight's ray through the light has its own note), NaN a value these extreme inputs do
+// not allow in double precision.
+void note_non_finite(nlohmann::json &out) {
+    if (!out.contains(kNonFiniteKey)) return;
+    std::string overflow, nan;
+    for (const auto &f : out[kNonFiniteKey]) {
+        std::string &list = f[1] == "nan" ? nan : overflow;
+        list += (list.empty() ? "" : ", ") + f[0].get<std::string>();
+    }
+    out.erase(kNonFiniteKey);
+    if (out.contains("note")) return;
+    std::string note;
+    if (!overflow.empty())
+        note = "null for " + overflow + ": beyond the largest double (1.8e308), infinite";
+    if (!nan.empty())
+        note += (note.empty() ? "" : "; ") + std::string("null for ") + nan +
+                ": not computable in double precision at these extreme inputs (an intermediate overflows)";
+    out["note"] = note;
 }
 
 void answer_F(const nlohmann::json &q, nlohmann::json &out, const EvalTables &tables) {
@@ -54,7 +85,8 @@ void answer_airlight(const nlohmann::json &q, nlohmann::json &out, const EvalTab
     a.length_m = number_field(q, "length");
     const double exact = airlight_radiance_exact(a); // validates the query
     put(out, "exact", exact);
-    if (std::isinf(exact)) out["note"] = "diverges: the view ray passes through the light";
+    const bool through_light = a.gamma_rad == 0.0 && a.length_m >= a.distance_m;
+    if (through_light) out["note"] = "diverges: the view ray passes through the light";
     if (tables.airlight.empty()) out["table"] = nullptr;
     else put(out, "table", tables.airlight.front().radiance(a));
 }
@@ -123,31 +155,69 @@ nlohmann::json eval_query(const nlohmann::json &query, const EvalTables &tables)
         throw std::invalid_argument("missing string field \"quantity\" (F, airlight, N or near_light)");
     const std::string quantity = query.at("quantity").get<std::string>();
     nlohmann::json out = query;
+    out.erase(kNonFiniteKey); // put()'s bookkeeping key, never a query's
     if (quantity == "F") answer_F(query, out, tables);
     else if (quantity == "airlight") answer_airlight(query, out, tables);
     else if (quantity == "N") answer_N(query, out, tables);
     else if (quantity == "near_light") answer_near_light(query, out, tables);
     else throw std::invalid_argument("unknown quantity \"" + quantity + "\" (expected F, airlight, N or near_light)");
+    note_non_finite(out);
     return out;
 }
+
+namespace {
+
+// Reads one line (without its '\n') into `line`, keeping at most kMaxEvalLineBytes: the
+// rest of a longer line is read and dropped, `too_long` set. False at end of input.
+bool read_bounded_line(std::istream &in, std::string &line, bool &too_long) {
+    line.clear();
+    too_long = false;
+    std::streambuf *buf = in.rdbuf();
+    bool any = false;
+    for (;;) {
+        const int c = buf->sbumpc();
+        if (c == std::char_traits<char>::eof()) {
+            in.setstate(std::ios::eofbit);
+            return any;
+        }
+        any = true;
+        if (c == '\n') return true;
+        if (line.size() < kMaxEvalLineBytes) line.push_back(static_cast<char>(c));
+        else too_long = true;
+    }
+}
+
+} // namespace
 
 int eval_stream(std::istream &in, std::ostream &out, const EvalTables &tables) {
     std::string line;
     int line_number = 0, errors = 0;
-    while (std::getline(in, line)) {
+    bool too_long = false;
+    while (read_bounded_line(in, line, too_long)) {
         ++line_number;
-        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        const std::string at = "line " + std::to_string(line_number) + ": ";
         nlohmann::json answer;
-        try {
-            answer = eval_query(nlohmann::json::parse(line), tables);
-        } catch (const nlohmann::json::exception &e) {
-            answer = {{"error", "line " + std::to_string(line_number) + ": invalid JSON: " + e.what()}};
+        std::string problem;
+        if (too_long) problem = "longer than " + std::to_string(kMaxEvalLineBytes) + " bytes (not read)";
+        else if (line.find_first_not_of(" \t\r") == std::string::npos) problem = "blank line, expected a JSON object";
+        else problem = json_text_problem(line, kMaxEvalNesting);
+        if (!problem.empty()) {
+            answer = {{"error", at + problem}};
             ++errors;
-        } catch (const std::exception &e) {
-            answer = {{"error", "line " + std::to_string(line_number) + ": " + e.what()}};
-            ++errors;
+        } else {
+            try {
+                answer = eval_query(nlohmann::json::parse(line), tables);
+            } catch (const nlohmann::json::exception &e) {
+                answer = {{"error", at + "invalid JSON: " + e.what()}};
+                ++errors;
+            } catch (const std::exception &e) {
+                answer = {{"error", at + e.what()}};
+                ++errors;
+            }
         }
-        out << answer.dump() << '\n';
+        // The query is echoed: its strings are valid UTF-8 (checked above); replace keeps a
+        // message quoting the line valid whatever it holds.
+        out << answer.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
         out.flush();
     }
     return errors;

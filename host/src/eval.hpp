@@ -26,9 +26,17 @@ struct EvalTables {
 // std::invalid_argument with a message for a malformed query.
 nlohmann::json eval_query(const nlohmann::json &query, const EvalTables &tables);
 
-// Reads JSON lines from `in` until EOF and writes one JSON line per input line to `out`,
-// in order; a bad line yields {"error": "line N: …"} and processing continues. Blank
-// lines are skipped. Returns the number of error lines.
+// Bounds on one eval input line, checked before it is parsed: a line is read up to
+// kMaxEvalLineBytes (the rest of a longer line is skipped unread into memory), and its
+// arrays/objects may nest kMaxEvalNesting deep (a query needs 2).
+inline constexpr size_t kMaxEvalLineBytes = 1 << 20;
+inline constexpr int kMaxEvalNesting = 64;
+
+// Reads JSON lines from `in` until EOF and writes exactly one JSON line per input line to
+// `out`, in order; a bad line (invalid JSON or UTF-8, too long, too deep, a bad query)
+// yields {"error": "line N: …"} and processing continues. A blank line (only spaces, tabs,
+// CR) is answered {"error": "line N: blank line, expected a JSON object"}. Returns the
+// number of error lines.
 int eval_stream(std::istream &in, std::ostream &out, const EvalTables &tables);
 
 } // namespace scatterlut

@@ -26,7 +26,9 @@
 namespace scatterlut {
 namespace {
 
-// Exit codes: 0 success, 1 failure (device, accuracy), 2 bad input (arguments, files).
+// Exit codes (README.md, "Exit codes"): 0 success; 1 a failure of the run or of what it
+// checks (device, accuracy, checksum, an inconsistent set, another run holding the output
+// directory); 2 usage or unreadable input (arguments, files, scenes, --device naming no device).
 constexpr int kExitFailure = 1;
 constexpr int kExitBadInput = 2;
 
@@ -127,11 +129,23 @@ int main(int argc, char **argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError &e) {
+        // A first word that is no subcommand: say so plainly (CLI11 would only list it as extra).
+        if (argc > 1 && argv[1][0] != '-' && app.get_subcommands().empty()) {
+            std::cerr << "scatterlut: unknown subcommand '" << argv[1]
+                      << "' (expected devices, plan, generate, eval, validate, inspect or report; see --help)\n";
+            return kExitBadInput;
+        }
         return app.exit(e) == 0 ? 0 : kExitBadInput;
+    } catch (const ChecksumError &e) {
+        std::cerr << "scatterlut: " << e.what() << "\n";
+        return kExitFailure;
     } catch (const LoadError &e) {
         std::cerr << "scatterlut: " << e.what() << "\n";
         return kExitBadInput;
     } catch (const std::invalid_argument &e) {
+        std::cerr << "scatterlut: " << e.what() << "\n";
+        return kExitBadInput;
+    } catch (const DeviceSelectionError &e) {
         std::cerr << "scatterlut: " << e.what() << "\n";
         return kExitBadInput;
     } catch (const DeviceError &e) {

@@ -168,8 +168,11 @@ Device::Device(const std::string &selector_in) {
         }
     }
     if (!found) {
-        throw DeviceError(selector.empty() ? "no OpenCL device with cl_khr_fp64 found; devices:" + candidates
-                                           : "no OpenCL device matches '" + selector + "'; devices:" + candidates);
+        if (!selector.empty())
+            throw DeviceSelectionError("--device (or SCATTERLUT_DEVICE) '" + selector +
+                                       "': no OpenCL device matches (expected P:D from `scatterlut devices` or a "
+                                       "name substring); devices:" + candidates);
+        throw DeviceError("no OpenCL device with cl_khr_fp64 found; devices:" + candidates);
     }
     context_ = cl::Context(device_);
     queue_ = cl::CommandQueue(context_, device_);

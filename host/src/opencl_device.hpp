@@ -34,6 +34,12 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// A --device (or SCATTERLUT_DEVICE) selector that names no device: a usage error (exit 2).
+class DeviceSelectionError : public DeviceError {
+public:
+    using DeviceError::DeviceError;
+};
+
 // Where a program came from: not built yet, compiled from the embedded source, or loaded
 // from the program binary cache (program_cache.hpp).
 enum class ProgramOrigin { None, Source, Cache };

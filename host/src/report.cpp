@@ -1,5 +1,7 @@
 #include "report.hpp"
 
+#include "cli_checks.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -587,12 +589,16 @@ void setup_report(CLI::App &app, int &exit_code, const std::string &command_line
                                              "methods for every table a scene calls for (Markdown, CSV, SVG)");
     cmd->add_option("--scene", opt->scene_file, "Scene file (TOML); default: the embedded default scene")
         ->check(CLI::ExistingFile);
-    cmd->add_option("--out", opt->out_dir, "Directory for report.md and the CSV and SVG files")->required();
+    cmd->add_option("--out", opt->out_dir, "Directory for report.md and the CSV and SVG files")
+        ->required()
+        ->check(non_empty_text("an output directory"));
     cmd->add_option("--device", opt->device, "OpenCL device: P:D index or name substring (env SCATTERLUT_DEVICE)");
     cmd->add_option("--rounds", opt->rounds, "Interleaved timing rounds per measurement (median reported)")
+        ->check(integer_number())
         ->check(CLI::Range(1, 100))
         ->capture_default_str();
     cmd->add_option("--queries", opt->queries, "Random radiance queries over the scene's domain per table")
+        ->check(integer_number())
         ->check(CLI::Range(100, 1000000))
         ->capture_default_str();
     cmd->callback([opt, &exit_code, &command_line] { exit_code = run_report(*opt, command_line); });

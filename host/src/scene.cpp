@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <initializer_list>
 #include <set>
@@ -10,6 +11,8 @@
 #include <toml++/toml.h>
 
 #include "embedded_kernels.hpp"
+#include "json_guard.hpp"
+#include "scatterlut/io.hpp"
 
 // The scenes embedded at build time (host/scenes/*.toml, cmake/embed_kernels.cmake).
 namespace scatterlut::embedded {
@@ -19,6 +22,11 @@ extern const std::size_t kSceneFileCount;
 
 namespace scatterlut {
 namespace {
+
+const char *const kLengthExpected = "a length in [1e-6, 1e6] m";
+const char *const kSigmaExpected = "a coefficient in [0, 1e6] (1/m)";
+const char *const kRelativeErrorExpected =
+    "a relative error on radiance in [1e-9, 0.5] (double-precision quadrature and storage reach ~1e-10)";
 
 // Messages: "FILE:LINE:COL: key 'path': expected …". Every check below goes through one
 // Reader so that each names the file, the place and the key's full dotted path.
@@ -34,7 +42,8 @@ public:
 
     // Refuses keys of `table` not in `known`.
     void only_keys(const toml::table &table, const std::string &path, std::initializer_list<const char *> known) const {
-        for (const auto &[key, node] : table) {
+        for (const auto &entry : table) {
+            const auto &key = entry.first; // not a structured binding: lambdas capture it (clang, C++17)
             const bool ok = std::any_of(known.begin(), known.end(), [&](const char *k) { return key.str() == k; });
             if (ok) continue;
             std::string list;
@@ -107,8 +116,8 @@ public:
         const toml::array *a = n.as_array();
         if (!a || a->size() != 2) fail(n.source(), key, std::string("expected ") + expect + ", got " + type_name(n));
         Range r;
-        r.min = number_value(*a->get(0), key + "[0]", 0.0, true, HUGE_VAL, "a number > 0 (m)");
-        r.max = number_value(*a->get(1), key + "[1]", 0.0, true, HUGE_VAL, "a number > 0 (m)");
+        r.min = number_value(*a->get(0), key + "[0]", kSceneMinLength_m, false, kSceneMaxLength_m, kLengthExpected);
+        r.max = number_value(*a->get(1), key + "[1]", kSceneMinLength_m, false, kSceneMaxLength_m, kLengthExpected);
         if (r.min > r.max)
             fail(n.source(), key, std::string("expected ") + expect + ", got an inverted range [" + shown(r.min) + ", " +
                                       shown(r.max) + "]");
@@ -146,11 +155,11 @@ SceneMedium read_medium(const Reader &rd, const toml::table &t, const std::strin
     SceneMedium m;
     m.line = static_cast<int>(t.source().begin.line);
     m.name = rd.string(t, "name", path, true, "");
-    m.sigma_s_per_m = rd.number(t, "sigma_s_per_m", path, true, 0, 0.0, false, HUGE_VAL, "a finite number >= 0 (1/m)");
-    m.sigma_a_per_m = rd.number(t, "sigma_a_per_m", path, true, 0, 0.0, false, HUGE_VAL, "a finite number >= 0 (1/m)");
+    m.sigma_s_per_m = rd.number(t, "sigma_s_per_m", path, true, 0, 0.0, false, kSceneMaxSigma_per_m, kSigmaExpected);
+    m.sigma_a_per_m = rd.number(t, "sigma_a_per_m", path, true, 0, 0.0, false, kSceneMaxSigma_per_m, kSigmaExpected);
     m.viewer_inside = rd.boolean(t, "viewer_inside", path, true, false);
-    m.relative_error = rd.number(t, "relative_error", path, false, relative_error, 0.0, true, 0.5,
-                                 "a relative error on radiance in (0, 0.5]");
+    m.relative_error = rd.number(t, "relative_error", path, false, relative_error, kSceneMinRelativeError, false, 0.5,
+                                 kRelativeErrorExpected);
     m.thick = rd.boolean(t, "thick", path, false, false);
     if (const toml::node *n = t.get("thickness_m")) {
         m.thickness_m = rd.range(*n, Reader::join(path, "thickness_m"));
@@ -175,14 +184,15 @@ SceneLight read_light(const Reader &rd, const toml::table &t, const std::string 
     if (l.type == LightType::Point) {
         rd.only_keys(t, path, {"name", "type", "intensity_W_per_sr", "distance_m", "media"});
         l.intensity_W_per_sr =
-            rd.number(t, "intensity_W_per_sr", path, true, 0, 0.0, true, HUGE_VAL, "a finite number > 0 (W/sr)");
+            rd.number(t, "intensity_W_per_sr", path, true, 0, 0.0, true, kSceneMaxIntensity, "a number in (0, 1e30] (W/sr)");
         const toml::node *d = t.get("distance_m");
         if (!d) rd.fail(t.source(), Reader::join(path, "distance_m"), "expected [min, max] in m (missing)");
         l.distance_m = rd.range(*d, Reader::join(path, "distance_m"));
     } else {
         rd.only_keys(t, path, {"name", "type", "irradiance_W_per_m2", "media"});
         l.irradiance_W_per_m2 =
-            rd.number(t, "irradiance_W_per_m2", path, false, 1.0, 0.0, true, HUGE_VAL, "a finite number > 0 (W/m^2)");
+            rd.number(t, "irradiance_W_per_m2", path, false, 1.0, 0.0, true, kSceneMaxIntensity,
+                      "a number in (0, 1e30] (W/m^2)");
     }
     l.name = rd.string(t, "name", path, true, "");
     if (const toml::node *n = t.get("media")) {
@@ -219,6 +229,34 @@ void check_names(const Reader &rd, const toml::table &root, const Scene &s) {
     }
 }
 
+// Optical depths a table can serve (media that scatter): sigma_t times a point light's largest distance (for
+// every medium it lights) or a slab's largest thickness at most kSceneMaxOpticalDepth.
+void check_optical_depths(const Reader &rd, const toml::table &root, const Scene &s) {
+    auto too_deep = [](double sigma_t, double length) { return sigma_t * length > kSceneMaxOpticalDepth; };
+    auto what = [](const SceneMedium &m, double length) {
+        std::ostringstream msg;
+        msg.precision(6);
+        msg << "expected sigma_t * length <= 1e4 optical depths with medium '" << m.name << "' (sigma_t = "
+            << m.sigma_t_per_m() << " 1/m), got " << m.sigma_t_per_m() * length
+            << " (the light would be attenuated below the smallest double)";
+        return msg.str();
+    };
+    for (size_t i = 0; i < s.media.size(); ++i) {
+        const SceneMedium &m = s.media[i];
+        if (m.sigma_s_per_m > 0.0 && m.has_thickness && too_deep(m.sigma_t_per_m(), m.thickness_m.max))
+            rd.fail(root["medium"][i]["thickness_m"].node()->source(), "medium[" + std::to_string(i) + "].thickness_m",
+                    what(m, m.thickness_m.max));
+    }
+    for (size_t i = 0; i < s.lights.size(); ++i) {
+        const SceneLight &l = s.lights[i];
+        if (l.type != LightType::Point) continue;
+        for (const SceneMedium &m : s.media)
+            if (m.sigma_s_per_m > 0.0 && Scene::lights_medium(l, m) && too_deep(m.sigma_t_per_m(), l.distance_m.max))
+                rd.fail(root["light"][i]["distance_m"].node()->source(), "light[" + std::to_string(i) + "].distance_m",
+                        what(m, l.distance_m.max));
+    }
+}
+
 // [[medium]] / [[light]]: an array of tables (one table alone is accepted too).
 template <class Item, class ReadFn>
 std::vector<Item> read_array(const Reader &rd, const toml::table &root, const char *key, ReadFn read) {
@@ -242,7 +280,98 @@ bool Scene::lights_medium(const SceneLight &light, const SceneMedium &medium) {
     return light.media.empty() || std::find(light.media.begin(), light.media.end(), medium.name) != light.media.end();
 }
 
+namespace {
+
+// What toml++ must not see: text that is not valid UTF-8, and a non-ASCII character outside
+// strings and comments (TOML's keys, values and whitespace are ASCII there). toml++ 3.x
+// classifies such a character with a table that reaches an unreachable branch for some
+// code points (U+00A1–U+0499, U+2CDE–U+30D7, U+FBC6–U+FEFE; undefined behaviour in a release
+// build, found by tests/fuzz/fuzz_inputs.cpp), so it is refused here first, as the syntax
+// error it is. Throws SceneError with file:line:column.
+void check_scene_text(const std::string &text, const std::string &source) {
+    enum { Normal, Comment, Basic, Literal, MultiBasic, MultiLiteral } state = Normal;
+    size_t line = 1, column = 1;
+    auto fail = [&](const char *what) {
+        std::ostringstream msg;
+        msg << source << ":" << line << ":" << column << ": syntax error: " << what;
+        throw SceneError(msg.str());
+    };
+    auto starts = [&](size_t i, const char *s) { return text.compare(i, std::strlen(s), s) == 0; };
+    auto escape_at = [&](size_t i) { // a backslash escaping the next ASCII character (not a line end)
+        return text[i] == '\\' && i + 1 < text.size() && static_cast<unsigned char>(text[i + 1]) < 0x80 &&
+               text[i + 1] != '\n';
+    };
+    const size_t n = text.size();
+    for (size_t i = 0; i < n;) {
+        const unsigned char c = static_cast<unsigned char>(text[i]);
+        if (c >= 0x80) {
+            const size_t len = utf8_sequence_length(text, i);
+            if (len == 0) fail("not valid UTF-8");
+            if (state == Normal) fail("a non-ASCII character outside a string or comment (expected ASCII keys and values)");
+            i += len;
+            ++column;
+            continue;
+        }
+        size_t step = 1;
+        switch (state) {
+        case Normal:
+            if (c == '#') {
+                state = Comment;
+            } else if (starts(i, "\"\"\"")) {
+                state = MultiBasic;
+                step = 3;
+            } else if (starts(i, "'''")) {
+                state = MultiLiteral;
+                step = 3;
+            } else if (c == '"') {
+                state = Basic;
+            } else if (c == '\'') {
+                state = Literal;
+            }
+            break;
+        case Comment:
+            if (c == '\n') state = Normal;
+            break;
+        case Basic:
+            if (escape_at(i)) step = 2;
+            else if (c == '"' || c == '\n') state = Normal;
+            break;
+        case Literal:
+            if (c == '\'' || c == '\n') state = Normal;
+            break;
+        case MultiBasic:
+            if (escape_at(i)) {
+                step = 2;
+            } else if (starts(i, "\"\"\"")) {
+                state = Normal;
+                step = 3;
+                while (i + step < n && step < 5 && text[i + step] == '"') ++step; // up to two quotes of content
+            }
+            break;
+        case MultiLiteral:
+            if (starts(i, "'''")) {
+                state = Normal;
+                step = 3;
+                while (i + step < n && step < 5 && text[i + step] == '\'') ++step;
+            }
+            break;
+        }
+        for (size_t k = 0; k < step; ++k) {
+            if (text[i + k] == '\n') {
+                ++line;
+                column = 1;
+            } else {
+                ++column;
+            }
+        }
+        i += step;
+    }
+}
+
+} // namespace
+
 Scene parse_scene(const std::string &text, const std::string &source) {
+    check_scene_text(text, source);
     toml::table root;
     try {
         root = toml::parse(text, source);
@@ -260,10 +389,10 @@ Scene parse_scene(const std::string &text, const std::string &source) {
     s.name = rd.string(root, "name", "", false, "");
     if (const toml::table *a = rd.table(root, "accuracy", "")) {
         rd.only_keys(*a, "accuracy", {"relative_error", "max_table_MiB"});
-        s.relative_error = rd.number(*a, "relative_error", "accuracy", false, s.relative_error, 0.0, true, 0.5,
-                                     "a relative error on radiance in (0, 0.5]");
-        s.max_table_MiB = rd.number(*a, "max_table_MiB", "accuracy", false, s.max_table_MiB, 0.0, true, 4096.0,
-                                    "a size in MiB in (0, 4096]");
+        s.relative_error = rd.number(*a, "relative_error", "accuracy", false, s.relative_error, kSceneMinRelativeError,
+                                     false, 0.5, kRelativeErrorExpected);
+        s.max_table_MiB = rd.number(*a, "max_table_MiB", "accuracy", false, s.max_table_MiB, kSceneMinTableMiB, false,
+                                    4096.0, "a size in MiB in [0.01, 4096] (the smallest table takes ~1 KiB)");
     }
     if (const toml::table *v = rd.table(root, "view", "")) {
         rd.only_keys(*v, "view", {"max_view_angle_deg", "max_light_angle_deg"});
@@ -286,16 +415,20 @@ Scene parse_scene(const std::string &text, const std::string &source) {
     });
     s.lights = read_array<SceneLight>(rd, root, "light", read_light);
     check_names(rd, root, s);
+    check_optical_depths(rd, root, s);
     return s;
 }
 
 Scene load_scene_file(const std::string &path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw SceneError(path + ": cannot read the scene file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw SceneError(path + ": cannot read the scene file");
-    return parse_scene(text.str(), path);
+    // A regular file of at most kMaxSceneBytes (what a table's provenance can carry), checked
+    // before reading: a FIFO, /dev/zero or a directory is refused without blocking.
+    std::vector<uint8_t> bytes;
+    try {
+        bytes = detail::read_file(path, kMaxSceneBytes, "a scene file (TOML)");
+    } catch (const LoadError &e) {
+        throw SceneError(e.what());
+    }
+    return parse_scene(std::string(bytes.begin(), bytes.end()), path);
 }
 
 Scene default_scene() {

@@ -16,6 +16,17 @@ public:
     using std::invalid_argument::invalid_argument;
 };
 
+// What a scene may ask for: the ranges a table can serve (checked when the scene is read,
+// each refusal naming file:line:column and the key; docs/SCENES.md).
+inline constexpr double kSceneMinLength_m = 1e-6, kSceneMaxLength_m = 1e6; // distances, thicknesses
+inline constexpr double kSceneMaxSigma_per_m = 1e6;  // sigma_s, sigma_a
+inline constexpr double kSceneMaxIntensity = 1e30;   // W/sr, W/m^2
+inline constexpr double kSceneMinRelativeError = 1e-9;
+inline constexpr double kSceneMinTableMiB = 0.01;
+// sigma_t times a light's largest distance or a slab's largest thickness: beyond it the
+// light is attenuated by e^{-1e4}, far below double precision's smallest number.
+inline constexpr double kSceneMaxOpticalDepth = 1e4;
+
 struct Range {
     double min = 0, max = 0;
 };

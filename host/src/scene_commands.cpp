@@ -6,12 +6,18 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <cstring>
+#include <stdexcept>
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
+#include "cli_checks.hpp"
 #include "opencl_device.hpp"
+#include "output_set.hpp"
 #include "plan.hpp"
 #include "scene.hpp"
 #include "scatterlut/io.hpp"
@@ -50,12 +56,17 @@ void add_scene_options(CLI::App *cmd, SceneOptions &o) {
     cmd->add_option("--storage", o.storage, "Stored precision, overrides output.storage (f16/f32 for EXR, f32/f64 binary)")
         ->check(CLI::IsMember({"f16", "f32", "f64"}));
     cmd->add_option("--u-max", o.u_max, "Airlight table: largest u = sigma_t*D*sin(gamma) (default: from the scene)")
+        ->check(finite_number())
         ->check(CLI::Range(1.0, 1e4));
     cmd->add_option("--n-u", o.n_u, "Airlight table: nodes along u (fixes the resolution instead of searching)")
+        ->check(integer_number())
         ->check(CLI::Range(8, 16384));
     cmd->add_option("--n-w", o.n_w, "Airlight table: nodes along w = pi/2 - v (fixes the resolution)")
+        ->check(integer_number())
         ->check(CLI::Range(8, 16384));
-    cmd->add_option("--w-min", o.w_min, "Airlight table: smallest w")->check(CLI::Range(1e-6, 0.1));
+    cmd->add_option("--w-min", o.w_min, "Airlight table: smallest w")
+        ->check(finite_number())
+        ->check(CLI::Range(1e-6, 0.1));
 }
 
 Scene load(const SceneOptions &o) { return o.scene_file.empty() ? default_scene() : load_scene_file(o.scene_file); }
@@ -160,9 +171,7 @@ nlohmann::json to_json(const ScenePlan &plan) {
 }
 
 // The resolution search of every table on the device selected by `selector`.
-void resolve_on_device(ScenePlan &plan, const std::string &selector, const std::string &command_line) {
-    if (plan.tables.empty()) return; // nothing to generate: no device needed
-    Device device(selector);
+void resolve_with(ScenePlan &plan, Device &device, const std::string &command_line) {
     std::cerr << "device: " << device.info().describe() << "\n";
     Provenance provenance;
     provenance.generator_version = generator_version();
@@ -173,6 +182,12 @@ void resolve_on_device(ScenePlan &plan, const std::string &selector, const std::
     std::function<void(const std::string &, double)> on_progress;
     if (progress.enabled) on_progress = [&](const std::string &label, double f) { progress(label, f); };
     resolve_plan(plan, device, provenance, on_progress);
+}
+
+void resolve_on_device(ScenePlan &plan, const std::string &selector, const std::string &command_line) {
+    if (plan.tables.empty()) return; // nothing to generate: no device needed
+    Device device(selector);
+    resolve_with(plan, device, command_line);
 }
 
 // ---------------------------------------------------------------- plan
@@ -196,34 +211,114 @@ struct GenerateOptions {
     bool fail_on_miss = false; // exit 1 when a table misses the scene's target (files still written)
 };
 
-void write_table(const Table &t, const std::string &out_dir, const std::string &stem, const std::string &format) {
-    std::filesystem::create_directories(out_dir);
-    if (format == "bin" || format == "both") {
-        const std::string path = out_dir + "/" + stem + ".slut";
-        save_binary(t, path);
-        std::cout << "  wrote " << path << "\n";
+// The output directory, created if missing; a path through a file, or one that cannot be
+// created, is a usage error naming the option and the component in the way.
+void prepare_output_directory(const std::string &out_dir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    // Every leading part as the user wrote it ("a/b" of "a/b/c"), then the whole path.
+    for (size_t end = out_dir.find('/', 1);; end = out_dir.find('/', end + 1)) {
+        const std::string prefix = out_dir.substr(0, end);
+        const fs::file_status st = fs::status(prefix, ec);
+        if (fs::exists(st) && !fs::is_directory(st))
+            throw std::invalid_argument("--out '" + out_dir + "': '" + prefix +
+                                        "' exists and is not a directory (expected an output directory)");
+        if (end == std::string::npos) break;
     }
-    if (format == "exr" || format == "both") {
-        if (t.storage == Storage::F64) {
-            std::cout << "  (no EXR: f64 storage is binary only)\n";
-        } else {
-            const std::string path = out_dir + "/" + stem + ".exr";
-            save_exr(t, path);
-            std::cout << "  wrote " << path << "\n";
+    fs::create_directories(out_dir, ec);
+    if (ec) throw std::invalid_argument("--out '" + out_dir + "': cannot create the output directory: " + ec.message());
+}
+
+// An exclusive, non-blocking flock on the output directory itself for the whole run: a
+// second generate into the same directory is refused at once. No lock file: the directory
+// holds only the run's files, and the kernel releases the lock when this process ends,
+// however it ends.
+class OutputLock {
+public:
+    explicit OutputLock(const std::string &out_dir) {
+        fd_ = ::open(out_dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+        if (fd_ < 0)
+            throw std::invalid_argument("--out '" + out_dir + "': cannot open the output directory: " +
+                                        std::strerror(errno));
+        if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+            const int err = errno;
+            ::close(fd_);
+            if (err == EWOULDBLOCK)
+                throw std::runtime_error("another scatterlut run is writing '" + out_dir +
+                                         "' (it holds the directory's lock); nothing written");
+            throw std::runtime_error(out_dir + ": cannot lock the output directory: " + std::strerror(err));
         }
     }
+    ~OutputLock() { ::close(fd_); }
+    OutputLock(const OutputLock &) = delete;
+    OutputLock &operator=(const OutputLock &) = delete;
+
+private:
+    int fd_ = -1;
+};
+
+std::string hex64_text(uint64_t x) {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(x));
+    return buf;
+}
+
+// The files of one run: every table encoded in memory, then each written to a hidden
+// temporary, the manifest last, and only then all renamed into place (AtomicFileSet).
+void write_output_set(const ScenePlan &plan, const std::string &out_dir, const std::string &command_line) {
+    const std::string &format = plan.scene.output.format;
+    struct File {
+        std::string name, kind, format;
+        std::vector<uint8_t> bytes;
+    };
+    std::vector<File> files;
+    for (const PlannedTable &t : plan.tables) {
+        if (format == "bin" || format == "both") files.push_back({t.kind + ".slut", t.kind, "bin", encode_binary(t.table)});
+        if (format == "exr" || format == "both") {
+            if (t.table.storage == Storage::F64) std::cout << t.kind << ": no EXR (f64 storage is binary only)\n";
+            else files.push_back({t.kind + ".exr", t.kind, "exr", encode_exr(t.table)});
+        }
+    }
+    nlohmann::json manifest;
+    manifest["manifest"] = kManifestMagic;
+    manifest["manifest_version"] = 1;
+    manifest["generator_version"] = generator_version();
+    manifest["command_line"] = command_line;
+    manifest["scene"] = {{"source", plan.scene.source}, {"text", plan.scene.text}};
+    manifest["storage"] = to_string(plan.storage);
+    nlohmann::json list = nlohmann::json::array();
+    for (const File &f : files)
+        list.push_back({{"name", f.name}, {"kind", f.kind}, {"format", f.format}, {"bytes", f.bytes.size()},
+                        {"fnv1a64", hex64_text(fnv1a64(f.bytes.data(), f.bytes.size()))}});
+    manifest["files"] = list;
+    const std::string text = manifest.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+
+    AtomicFileSet set;
+    for (const File &f : files) set.add(out_dir + "/" + f.name, f.bytes);
+    set.add(out_dir + "/" + kManifestName, std::vector<uint8_t>(text.begin(), text.end()));
+    set.commit();
+    for (const File &f : files) std::cout << "  wrote " << out_dir << "/" << f.name << "\n";
+    std::cout << "  wrote " << out_dir << "/" << kManifestName << " (" << files.size() << " file(s) of this run)\n";
 }
 
 int run_generate(const GenerateOptions &opt, const std::string &command_line) {
     ScenePlan plan = make_plan(opt.scene, load(opt.scene));
     const std::string out_dir = opt.out_dir.empty() ? plan.scene.output.directory : opt.out_dir;
-    resolve_on_device(plan, opt.scene.device, command_line);
+    if (plan.tables.empty()) { // nothing to generate: nothing written, not even the directory
+        print_text(plan);
+        return 0;
+    }
+    Device device(opt.scene.device); // a --device naming no device is refused before anything is created
+    prepare_output_directory(out_dir);
+    const OutputLock lock(out_dir); // held until every file of this run is in place
+    resolve_with(plan, device, command_line);
     print_text(plan);
-    // Only now, with every table generated and measured, is anything written.
+    // Only now, with every table generated and measured, is anything written: all files of
+    // the run to temporaries, then renamed together (an error or a signal before leaves the
+    // previous set whole).
+    write_output_set(plan, out_dir, command_line);
     int missed = 0;
     for (const PlannedTable &t : plan.tables) {
-        std::cout << t.kind << ":\n";
-        write_table(t.table, out_dir, t.kind, plan.scene.output.format);
         if (!t.reached) {
             std::cerr << "scatterlut: " << (opt.fail_on_miss ? "error: " : "warning: ") << t.kind << ": " << t.verdict
                       << "\n";
@@ -250,7 +345,8 @@ void setup_generate(CLI::App &app, int &exit_code, const std::string &command_li
     auto opt = std::make_shared<GenerateOptions>();
     auto *cmd = app.add_subcommand("generate", "Carry out a scene's plan: generate its tables on the OpenCL device and write them");
     add_scene_options(cmd, opt->scene);
-    cmd->add_option("--out", opt->out_dir, "Output directory (default: the scene's output.directory)");
+    cmd->add_option("--out", opt->out_dir, "Output directory (default: the scene's output.directory)")
+        ->check(non_empty_text("an output directory"));
     cmd->add_flag("--fail-on-miss", opt->fail_on_miss,
                   "Exit 1 if a table misses the scene's accuracy target (for CI; the tables are still written, "
                   "each with its measured error)");

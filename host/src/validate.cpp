@@ -1,10 +1,13 @@
 #include "validate.hpp"
 
+#include "cli_checks.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -18,6 +21,7 @@
 #include "generate_airlight.hpp"
 #include "generate_nearlight.hpp"
 #include "measure_util.hpp"
+#include "output_set.hpp"
 #include "scatterlut/airlight.hpp"
 #include "scatterlut/io.hpp"
 #include "scatterlut/nearlight.hpp"
@@ -74,6 +78,7 @@ struct FileReport {
     int status = 0; // 0 pass, 1 fail, 2 unreadable/unsupported
     std::string message;
     Table table; // empty when unreadable
+    bool loaded = false; // table holds the file's table (false: unreadable or a checksum failure)
     std::vector<Check> checks;
 };
 
@@ -135,6 +140,11 @@ FileReport validate_file(const std::string &path, const ValidateOptions &opt) {
     r.path = path;
     try {
         r.table = load_table(path);
+        r.loaded = true;
+    } catch (const ChecksumError &e) {
+        r.status = kExitFailure; // read, but corrupt: a checksum failure, not an unreadable file
+        r.message = std::string("checksum failure: ") + e.what();
+        return r;
     } catch (const LoadError &e) {
         r.status = kExitBadInput;
         r.message = std::string("unreadable or unsupported: ") + e.what();
@@ -200,7 +210,7 @@ void print_json(const FileReport &r) {
     j["status"] = status_name(r.status);
     j["pass"] = r.status == 0;
     if (!r.message.empty()) j["message"] = r.message;
-    if (r.status != kExitBadInput) {
+    if (r.loaded && r.status != kExitBadInput) {
         const Table &t = r.table;
         j["kind"] = t.kind;
         j["storage"] = to_string(t.storage);
@@ -221,7 +231,7 @@ void print_json(const FileReport &r) {
 
 void print_text(const FileReport &r) {
     std::printf("%s: %s\n", r.path.c_str(), status_name(r.status));
-    if (r.status == kExitBadInput) {
+    if (!r.loaded || r.status == kExitBadInput) {
         std::printf("  %s\n", r.message.c_str());
         return;
     }
@@ -242,14 +252,63 @@ void print_text(const FileReport &r) {
     if (r.status != 0 && !r.message.empty()) std::printf("  %s\n", r.message.c_str());
 }
 
+int report_file(const FileReport &r, const ValidateOptions &opt) {
+    if (!r.loaded || r.status == kExitBadInput) std::cerr << "scatterlut: " << r.message << "\n";
+    if (opt.json) print_json(r);
+    else print_text(r);
+    return r.status;
+}
+
+// A directory: the output set its manifest lists (sizes, checksums, no stray table files,
+// kinds), then every listed table as validate_file checks a file.
+int validate_directory(const std::string &dir, const ValidateOptions &opt) {
+    OutputSetCheck set;
+    try {
+        set = check_output_set(dir);
+    } catch (const LoadError &e) {
+        std::cerr << "scatterlut: " << e.what() << "\n";
+        if (opt.json) std::cout << nlohmann::json({{"directory", dir}, {"status", "UNREADABLE"}, {"pass", false},
+                                                   {"message", e.what()}}).dump() << "\n";
+        else std::printf("%s: UNREADABLE\n  %s\n", dir.c_str(), e.what());
+        return kExitBadInput;
+    }
+    int worst = set.mismatches.empty() ? 0 : kExitFailure;
+    if (opt.json) {
+        std::cout << nlohmann::json({{"directory", dir},
+                                     {"status", set.mismatches.empty() ? "CONSISTENT" : "MISMATCH"},
+                                     {"pass", set.mismatches.empty()},
+                                     {"files", set.files.size()},
+                                     {"mismatches", set.mismatches}})
+                         .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)
+                  << "\n";
+    } else {
+        std::printf("%s: %s (%zu file(s) listed in %s)\n", dir.c_str(),
+                    set.mismatches.empty() ? "one consistent output set" : "MISMATCH: not one run's output set",
+                    set.files.size(), kManifestName);
+        for (const std::string &m : set.mismatches) std::printf("  %s\n", m.c_str());
+    }
+    for (const std::string &m : set.mismatches) std::cerr << "scatterlut: " << m << "\n";
+    for (const ManifestFile &f : set.files) {
+        const std::string path = dir + "/" + f.name;
+        if (std::any_of(set.mismatches.begin(), set.mismatches.end(),
+                        [&](const std::string &m) { return m.compare(0, path.size() + 1, path + ":") == 0; }))
+            continue; // already reported
+        FileReport r = validate_file(path, opt);
+        if (r.loaded && r.table.kind != f.kind) {
+            r.status = std::max(r.status, kExitFailure);
+            r.message = "kind '" + r.table.kind + "', the manifest says '" + f.kind + "'";
+        }
+        worst = std::max(worst, report_file(r, opt));
+    }
+    return worst;
+}
+
 int run_validate(const ValidateOptions &opt) {
     int worst = 0;
     for (const auto &path : opt.files) {
-        const FileReport r = validate_file(path, opt);
-        if (r.status == kExitBadInput) std::cerr << "scatterlut: " << r.message << "\n";
-        if (opt.json) print_json(r);
-        else print_text(r);
-        worst = std::max(worst, r.status);
+        std::error_code ec;
+        if (std::filesystem::is_directory(path, ec)) worst = std::max(worst, validate_directory(path, opt));
+        else worst = std::max(worst, report_file(validate_file(path, opt), opt));
     }
     return worst;
 }
@@ -260,12 +319,16 @@ void setup_validate(CLI::App &app, int &exit_code) {
     auto opt = std::make_shared<ValidateOptions>();
     auto *cmd = app.add_subcommand("validate",
                                    "Re-measure table files' accuracy independently and compare with what they declare");
-    cmd->add_option("files", opt->files, "Table files (.slut or .exr)")->required();
+    cmd->add_option("files", opt->files,
+                    "Table files (.slut or .exr), or output directories (their manifest.json: one run's set)")
+        ->required();
     cmd->add_flag("--json", opt->json, "One JSON object per file on stdout");
     cmd->add_option("--nodes", opt->nodes, "Nodes re-integrated with a finer rule (corners included)")
+        ->check(integer_number())
         ->check(CLI::Range(200, 1000000))
         ->capture_default_str();
     cmd->add_option("--points", opt->points, "Random off-node points for the sampling error")
+        ->check(integer_number())
         ->check(CLI::Range(2000, 10000000))
         ->capture_default_str();
     cmd->callback([opt, &exit_code] { exit_code = run_validate(*opt); });

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "scatterlut/io.hpp"
 #include "scatterlut/sampler.hpp"
 #include "simd4.hpp"
 
@@ -37,9 +38,7 @@ slut_airlight_geometry setup_near_end_unscaled(const AirlightQuery &q) {
     return g;
 }
 
-void set_scale(slut_airlight_geometry *g) {
-    if (g->kind == 0) g->scale = g->scale_unattenuated * std::exp(-g->optical_distance);
-}
+void set_scale(slut_airlight_geometry *g) { slut_airlight_set_scale(g); }
 
 slut_airlight_geometry setup_near_end(const AirlightQuery &q) {
     slut_airlight_geometry g = setup_near_end_unscaled(q);
@@ -139,6 +138,13 @@ AirlightTable::AirlightTable(Table table) : table_(std::move(table)) {
     require(table_.axes[0].map.min == 0.0, "airlight table u axis must start at 0");
     require(std::fabs(table_.axes[1].map.max - 1.5707963267948966) < 1e-12,
             "airlight table w axis must end at pi/2");
+    // G̃ ∈ (0, 1]: a stored ln G̃ above 0 (beyond rounding) or below −1e6 is no airlight value.
+    const size_t stride = table_.channels.size();
+    for (size_t i = 0; i < table_.values.size(); i += stride)
+        require(table_.values[i] >= kMinStoredLn && table_.values[i] <= kLnRoundingSlack,
+                "airlight table: ln G~ = " + std::to_string(table_.values[i]) + " at " +
+                    detail::describe_value(table_, i) +
+                    " is outside the quantity's range (G~ in (0, 1]: ln G~ <= 0): the file is corrupt");
     cache_ = make_sampler_cache(table_);
     values32_ = float_values_if_exact(table_);
     u_max_ = table_.axes[0].map.max;
@@ -189,10 +195,12 @@ double AirlightTable::tail(double u, double v) const {
     return std::exp(-u * tan_v) * w * scaled_tail(u, w, u * tan_v);
 }
 
+// F = G(u, 0) − G(u, v) where that keeps the table's relative accuracy, the direct
+// integral where it would cancel (slut_F_from_tails).
 double AirlightTable::F(double u, double v) const {
-    if (v <= 0.0) return 0.0;
+    if (!(v > 0.0)) return 0.0;
     const double whole = 1.5707963267948966 * scaled_tail(u, 1.5707963267948966, 0.0);
-    return std::fmax(whole - tail(u, v), 0.0);
+    return std::fmax(slut_F_from_tails(u, v, whole, tail(u, v)), 0.0);
 }
 
 // A segment short enough for one panel takes the θ-integral directly (6 exps, more
@@ -201,8 +209,26 @@ double AirlightTable::F(double u, double v) const {
 double AirlightTable::radiance(const AirlightQuery &q) const {
     const slut_airlight_geometry g = setup_near_end_unscaled(q);
     if (g.kind != 0) return slut_airlight_from_gs(&g, 0.0, 0.0);
+    // Beyond plain products (scales or lengths near the ends of the double range): the
+    // general path, which multiplies in logarithms where it must (slut_airlight_scaled).
+    if (!slut_airlight_scale_is_plain(&g, q.distance_m, q.length_m)) return radiance_general(q);
     if (slut_airlight_theta_fits_one_panel(&g)) return one_panel_radiance(g);
     return two_sample_radiance(g);
+}
+
+// The scalar path without the fast paths' folding: the geometry with its scale (and its
+// logarithm where the scale is not a normal double), then one θ-panel or the two samples.
+double AirlightTable::radiance_general(const AirlightQuery &q) const {
+    slut_airlight_geometry g = setup_near_end(q);
+    if (g.kind != 0) return slut_airlight_from_gs(&g, 0.0, 0.0);
+    if (slut_airlight_theta_fits_one_panel(&g))
+        return slut_airlight_scaled(
+            &g, slut_airlight_theta_integral_one_panel(g.c, g.cos_half, g.sin_half, g.tan_dv) / g.sin_gamma);
+    slut_airlight_setup_far_end(&g);
+    const double at_u = unit_u(g.u);
+    const double gs2 = scaled_tail_at(at_u, g.u, g.w2, g.a2);
+    const double gs1 = g.w1 > 0.0 ? scaled_tail_at(at_u, g.u, g.w1, g.a1) : 0.0;
+    return slut_airlight_from_gs(&g, gs2, gs1);
 }
 
 #if SLUT_HAVE_SIMD4
@@ -469,8 +495,11 @@ struct AirlightBatch {
         const v4d tan_dv = simd4::select(y_ahead, ss / (d_far + y), (d_far - y) / ss);
         const v4d optical_delta = sigma_t * simd4::max4(s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D), zero);
         // Lanes for the vectors: kind 0 (σ_s, I0, s > 0), finite s, γ/2 > 0 (not through the light).
+        // And the plain-product range of slut_airlight_scale_is_plain (the rest: radiance_general).
+        const v4d lo = simd4::splat(1e-100), hi = simd4::splat(1e100);
         const v4l regular = (sigma_s > zero) & (intensity > zero) & (s > zero) & (s <= simd4::splat(SLUT_INFINITE_ABOVE)) &
-                            (sin_half > zero);
+                            (sin_half > zero) & (scale_unattenuated >= lo) & (scale_unattenuated <= hi) &
+                            (optical_distance <= simd4::splat(300.0)) & (D >= lo) & (D <= hi) & (s >= lo) & (s <= hi);
         const v4l fits = (tan_dv <= 0.25 * w2) & (c * tan_dv <= 4.0 * cos_half);
         for (int l = 0; l < 4; ++l) {
             if (l > 0 && index[l] == index[0]) break; // the padding of the last block

@@ -7,6 +7,7 @@
 // what was expected.
 #include "scatterlut/io.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cfloat>
@@ -18,6 +19,8 @@
 #include <system_error>
 
 #include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -465,6 +468,7 @@ struct Decoder {
     const uint8_t *base = nullptr; // start of the file, for offsets in messages
 
     [[noreturn]] void fail(const std::string &what) const { throw LoadError(name + ": " + what); }
+    [[noreturn]] void fail_checksum(const std::string &what) const { throw ChecksumError(name + ": " + what); }
 
     // Visits the records of [p, p + n): f(tag, value, length, offset_in_file).
     template <class F> void records(const uint8_t *p, size_t n, const std::string &where, F f) const {
@@ -732,7 +736,7 @@ Table decode_binary(const uint8_t *data, size_t size, const std::string &name) {
     const size_t hdr_n = static_cast<size_t>(header_size);
     const uint64_t computed_header_sum = fnv1a64(hdr, hdr_n, fnv1a64(data, 32));
     if (computed_header_sum != header_sum)
-        d.fail("header checksum mismatch (stored " + hex64(header_sum) + ", computed " + hex64(computed_header_sum) +
+        d.fail_checksum("header checksum mismatch (stored " + hex64(header_sum) + ", computed " + hex64(computed_header_sum) +
                "): the file is corrupt");
 
     // --- header records ---
@@ -819,7 +823,7 @@ Table decode_binary(const uint8_t *data, size_t size, const std::string &name) {
     const uint8_t *pl = data + after_header;
     const uint64_t computed_payload_sum = fnv1a64(pl, static_cast<size_t>(payload_size));
     if (computed_payload_sum != payload_sum)
-        d.fail("payload checksum mismatch (stored " + hex64(payload_sum) + ", computed " +
+        d.fail_checksum("payload checksum mismatch (stored " + hex64(payload_sum) + ", computed " +
                hex64(computed_payload_sum) + "): the file is corrupt");
 
     // --- payload ---
@@ -858,8 +862,10 @@ Table decode_binary(const uint8_t *data, size_t size, const std::string &name) {
 
 namespace detail {
 
-std::vector<uint8_t> read_file(const std::string &path) {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+std::vector<uint8_t> read_file(const std::string &path, uint64_t max_bytes, const char *expected) {
+    // O_NONBLOCK: opening a FIFO (or a device) must not wait for a writer; only a regular
+    // file is read, and its size is checked before anything is allocated.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
     if (fd < 0) throw LoadError(path + ": cannot open for reading: " + std::strerror(errno));
     struct FdGuard {
         int fd;
@@ -867,8 +873,14 @@ std::vector<uint8_t> read_file(const std::string &path) {
     } guard{fd};
     struct stat st;
     if (::fstat(fd, &st) != 0) throw LoadError(path + ": cannot stat: " + std::strerror(errno));
-    if (S_ISDIR(st.st_mode)) throw LoadError(path + ": is a directory, expected a table file");
-    if (!S_ISREG(st.st_mode)) throw LoadError(path + ": is not a regular file, expected a table file");
+    if (S_ISDIR(st.st_mode)) throw LoadError(path + ": is a directory, expected " + expected);
+    if (!S_ISREG(st.st_mode))
+        throw LoadError(path + ": is not a regular file (a FIFO, socket or device), expected " + expected);
+    if (static_cast<uint64_t>(st.st_size) > max_bytes)
+        throw LoadError(path + ": " + std::to_string(st.st_size) + " bytes, more than the " +
+                        std::to_string(max_bytes) + " expected of " + expected);
+    const int flags = ::fcntl(fd, F_GETFL);
+    if (flags >= 0) (void)::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
     // The size comes from the file system, not from the file's contents.
     std::vector<uint8_t> bytes(static_cast<size_t>(st.st_size));
     size_t got = 0;
@@ -883,6 +895,10 @@ std::vector<uint8_t> read_file(const std::string &path) {
     }
     bytes.resize(got);
     return bytes;
+}
+
+std::vector<uint8_t> read_file(const std::string &path) {
+    return read_file(path, std::numeric_limits<uint64_t>::max(), "a table file");
 }
 
 } // namespace detail
@@ -928,10 +944,34 @@ void remove_temporaries_in_progress() noexcept {
         if (slot.ready.load()) (void)::unlink(slot.path);
 }
 
-void write_file_atomic(const std::string &path, const std::vector<uint8_t> &bytes) {
-    // Split path into directory and name (the temp file must be on the same file system).
+namespace {
+
+// The directory part of path (the temporary file must be on the same file system).
+std::string directory_of(const std::string &path) {
     const size_t slash = path.find_last_of('/');
-    const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+    return slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+}
+
+// Makes a rename in `dir` durable (best effort: some file systems refuse).
+void sync_directory(const std::string &dir) {
+    const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dfd >= 0) {
+        (void)::fsync(dfd);
+        ::close(dfd);
+    }
+}
+
+struct WrittenTemporary {
+    std::string tmp;
+    TemporaryFileSlot *slot = nullptr;
+};
+
+// Writes bytes to a new hidden temporary beside path, fsyncs and closes it; the temporary is
+// registered for remove_temporaries_in_progress until the caller renames or unlinks it and
+// releases the slot. On failure nothing is left behind and std::system_error names path.
+WrittenTemporary write_temporary(const std::string &path, const std::vector<uint8_t> &bytes) {
+    const std::string dir = directory_of(path);
+    const size_t slash = path.find_last_of('/');
     const std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
     if (base.empty() || base == "." || base == "..")
         throw std::system_error(EISDIR, std::generic_category(), path + ": not a file name");
@@ -978,14 +1018,74 @@ void write_file_atomic(const std::string &path, const std::vector<uint8_t> &byte
     const int closed = ::close(fd);
     fd = -1;
     if (closed != 0) fail(errno, "close failed (previous file left intact)");
-    if (::rename(tmp.c_str(), path.c_str()) != 0) fail(errno, "cannot rename the temporary file over it");
-    release_temporary_file(slot);
-    // Make the rename itself durable (best effort: some file systems refuse).
-    const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (dfd >= 0) {
-        (void)::fsync(dfd);
-        ::close(dfd);
+    return {tmp, slot};
+}
+
+} // namespace
+
+void write_file_atomic(const std::string &path, const std::vector<uint8_t> &bytes) {
+    WrittenTemporary t = write_temporary(path, bytes);
+    if (::rename(t.tmp.c_str(), path.c_str()) != 0) {
+        const int err = errno;
+        ::unlink(t.tmp.c_str());
+        release_temporary_file(t.slot);
+        throw std::system_error(err, std::generic_category(), path + ": cannot rename the temporary file over it");
     }
+    release_temporary_file(t.slot);
+    sync_directory(directory_of(path));
+}
+
+struct AtomicFileSet::Pending {
+    std::string path, tmp;
+    TemporaryFileSlot *slot = nullptr;
+};
+
+AtomicFileSet::AtomicFileSet() = default;
+
+AtomicFileSet::~AtomicFileSet() {
+    for (Pending &p : pending_) {
+        ::unlink(p.tmp.c_str());
+        release_temporary_file(p.slot);
+    }
+}
+
+void AtomicFileSet::add(const std::string &path, const std::vector<uint8_t> &bytes) {
+    pending_.reserve(pending_.size() + 1); // no allocation between the write and the push
+    // A final name that is a directory would fail only at its rename, after earlier files
+    // of the set were renamed: refused here, while nothing has moved.
+    struct stat st;
+    if (::lstat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+        throw std::system_error(EISDIR, std::generic_category(),
+                                path + ": is a directory, cannot write the file there (nothing of this set renamed)");
+    WrittenTemporary t = write_temporary(path, bytes);
+    pending_.push_back(Pending{path, t.tmp, t.slot});
+}
+
+void AtomicFileSet::commit() {
+    // The renames run with SIGINT, SIGTERM and SIGHUP blocked (this thread): a handler that
+    // ends the process must not cut the set in two. A signal that arrives meanwhile is
+    // delivered once the last rename is done.
+    sigset_t terminating, previous;
+    sigemptyset(&terminating);
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&terminating, sig);
+    pthread_sigmask(SIG_BLOCK, &terminating, &previous);
+    struct Restore {
+        sigset_t *mask;
+        ~Restore() { pthread_sigmask(SIG_SETMASK, mask, nullptr); }
+    } restore{&previous};
+    std::vector<std::string> dirs;
+    dirs.reserve(pending_.size());
+    while (!pending_.empty()) {
+        Pending &p = pending_.front();
+        if (::rename(p.tmp.c_str(), p.path.c_str()) != 0)
+            throw std::system_error(errno, std::generic_category(),
+                                    p.path + ": cannot rename the temporary file over it (the files before it in "
+                                             "the set are renamed already)");
+        release_temporary_file(p.slot);
+        if (std::find(dirs.begin(), dirs.end(), directory_of(p.path)) == dirs.end()) dirs.push_back(directory_of(p.path));
+        pending_.erase(pending_.begin());
+    }
+    for (const std::string &d : dirs) sync_directory(d);
 }
 
 Table load_binary(const std::string &path) {

@@ -258,6 +258,7 @@ struct ExrReader {
     std::set<std::string> used; // scatterlut.* attributes this reader understood
 
     [[noreturn]] void fail(const std::string &what) const { throw LoadError(name + ": " + what); }
+    [[noreturn]] void fail_checksum(const std::string &what) const { throw ChecksumError(name + ": " + what); }
 
     template <class A> const A *typed(const std::string &key, const char *want) {
         auto it = h->find(key);
@@ -317,7 +318,7 @@ Table decode_exr_header(ExrReader &r, const Imf::Header &h) {
     r.hex(kChecksumPrefix + "payload");
     const uint64_t computed_sum = header_checksum(h);
     if (stored_sum != computed_sum)
-        r.fail("header checksum mismatch (stored " + hex64(stored_sum) + ", computed " + hex64(computed_sum) +
+        r.fail_checksum("header checksum mismatch (stored " + hex64(stored_sum) + ", computed " + hex64(computed_sum) +
                "): the scatterlut.* attributes are corrupt or were edited");
 
     Table t;
@@ -660,7 +661,7 @@ Table decode_exr(const uint8_t *data, size_t size, const std::string &name) {
         const uint64_t stored = r.hex(kChecksumPrefix + "payload");
         const uint64_t computed = fnv1a64(payload.data(), payload.size());
         if (stored != computed)
-            r.fail("payload checksum mismatch (stored " + hex64(stored) + ", computed " + hex64(computed) +
+            r.fail_checksum("payload checksum mismatch (stored " + hex64(stored) + ", computed " + hex64(computed) +
                    "): the pixels are corrupt or were edited");
         for (size_t i = 0; i < n; ++i)
             if (!std::isfinite(t.values[i]))

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "scatterlut/io.hpp"
 #include "scatterlut/sampler.hpp"
 #include "simd4.hpp"
 
@@ -127,6 +128,18 @@ NearLightTable::NearLightTable(Table table) : table_(std::move(table)) {
                 table_.channels[0].encoding == Encoding::Log,
             std::string("near-light table channel 0 must be ") + channel + " (log encoded)");
     table_.check_consistent();
+    // E ∈ (0, 1] (an attenuation mean): ln E ≤ 0 for E3; E4 stores ln(E/B) with
+    // B ≥ e^{−T} (slut_nl_E_base), so ln(E/B) ≤ T at the node's T. Beyond rounding, or
+    // below −1e6, a value is no near-light value.
+    const size_t stride = table_.channels.size(), n_T = static_cast<size_t>(table_.axes[0].map.count);
+    for (size_t i = 0; i < table_.values.size(); i += stride) {
+        const double T = slut_axis_node(&table_.axes[0].map, static_cast<int>((i / stride) % n_T));
+        const double hi = (e3 ? 0.0 : T) + kLnRoundingSlack;
+        require(table_.values[i] >= kMinStoredLn && table_.values[i] <= hi,
+                std::string("near-light table: ") + channel + " = " + std::to_string(table_.values[i]) + " at " +
+                    detail::describe_value(table_, i) + " is outside the quantity's range (E in (0, 1]: " +
+                    (e3 ? "ln E <= 0" : "ln(E/B) <= T") + "): the file is corrupt");
+    }
     cache_ = make_sampler_cache(table_);
     values32_ = float_values_if_exact(table_);
 }

@@ -61,8 +61,9 @@ public:
     double scaled_tail(double u, double w) const; // a = u·cot w
 
     // F(u, v) and the tail G(u, v) from the table: G = e^{−u tan v}·w·G̃(u, w) keeps the
-    // table's relative accuracy; F = G(u, 0) − G(u, v) loses it where F ≪ G(u, 0)
-    // (small v·u): absolute error ≈ table error × G(u, 0).
+    // table's relative accuracy; F = G(u, 0) − G(u, v) would lose it where F ≪ G(u, 0)
+    // (small v·u), so there (G(u, v) > G(u, 0)/2) F is integrated directly instead
+    // (slut_F_from_tails, kernels/slut_airlight.h: ~1e-13 relative, any v > 0).
     double F(double u, double v) const;
     double tail(double u, double v) const;
 
@@ -89,6 +90,7 @@ private:
     double unit_u(double u) const;                                     // u's unit coordinate
     double scaled_tail_at(double unit_u, double u, double w, double a) const; // G̃ given it
     // The radiance's two paths (airlight.cpp), from the geometry without its e^{−σ_t D}.
+    double radiance_general(const AirlightQuery &q) const;
     double one_panel_radiance(const slut_airlight_geometry &g) const;
     double two_sample_radiance(const slut_airlight_geometry &g) const;
     double ln_gs_at(int cell_u, double frac_u, double unit_w) const; // ln G̃ from values32_

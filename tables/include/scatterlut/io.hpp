@@ -27,6 +27,13 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// A table file whose stored checksum (header or payload) does not match its bytes: a file
+// that was read but is corrupt. The scatterlut command exits 1 for it (2 for LoadError).
+class ChecksumError : public LoadError {
+public:
+    using LoadError::LoadError;
+};
+
 // Format limits (binary and EXR). Writers refuse tables beyond them with
 // std::invalid_argument; readers refuse files beyond them with LoadError.
 inline constexpr size_t kMaxChannels = 16;
@@ -86,6 +93,26 @@ uint64_t fnv1a64(const void *data, size_t size, uint64_t state = kFnv1a64Basis);
 // the previous file is untouched, and std::system_error names the path.
 void write_file_atomic(const std::string &path, const std::vector<uint8_t> &bytes);
 
+// Several files made visible together (one run's output set): add() writes each file's
+// bytes to its own hidden temporary beside the final name (fsynced, registered for
+// remove_temporaries_in_progress), commit() then renames them all in the order added and
+// fsyncs their directories. Until commit() no final name changes, so an error or a signal
+// before it leaves the previous files whole; destroying an uncommitted set removes its
+// temporaries. Throws std::system_error naming the path. Not copyable.
+class AtomicFileSet {
+public:
+    AtomicFileSet();
+    ~AtomicFileSet();
+    AtomicFileSet(const AtomicFileSet &) = delete;
+    AtomicFileSet &operator=(const AtomicFileSet &) = delete;
+    void add(const std::string &path, const std::vector<uint8_t> &bytes);
+    void commit();
+
+private:
+    struct Pending;
+    std::vector<Pending> pending_;
+};
+
 // Unlinks the temporary files of the write_file_atomic calls in progress in this process,
 // leaving every final name as it was. Async-signal-safe (reads lock-free flags, calls
 // unlink): meant for a SIGINT/SIGTERM handler, which then re-raises the signal. A SIGKILL
@@ -95,6 +122,10 @@ void remove_temporaries_in_progress() noexcept;
 namespace detail {
 // Shared by the binary and EXR codecs; not a stable API.
 std::vector<uint8_t> read_file(const std::string &path); // throws LoadError
+// A regular file of at most max_bytes (FIFOs, devices and directories are refused without
+// blocking: opened O_NONBLOCK, checked by fstat before any read); `expected` names what
+// the file should be in messages ("a table file"). Throws LoadError.
+std::vector<uint8_t> read_file(const std::string &path, uint64_t max_bytes, const char *expected);
 // Table::check_consistent() plus the format limits above; std::invalid_argument.
 void check_limits(const Table &table);
 // The payload as stored: values rounded to table.storage, little-endian, in table order.

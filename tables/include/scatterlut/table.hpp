@@ -32,6 +32,11 @@ inline constexpr const char *kKindNearLightE3 = "near_light_E3"; // E(T, g, r), 
 inline constexpr const char *kKindNearLightE4 = "near_light_E4"; // E(T, g, r, S) on axes (T, g, r, q)
 // 2: E4 stores ln(E/B) on the slab axis q (warp nl_qodds); 1 stored ln E on a log S axis.
 inline constexpr uint32_t kNearLightEQuantityVersion = 2;
+// The stored logarithms' physical range, which AirlightTable and NearLightTable check at
+// load (naming the node): ln G̃ ≤ 0, ln E ≤ 0, ln(E/B) ≤ T, each within kLnRoundingSlack
+// (storage rounding), and none below kMinStoredLn (e^{−1e6}: no double is left).
+inline constexpr double kLnRoundingSlack = 1e-3;
+inline constexpr double kMinStoredLn = -1e6;
 
 enum class Storage : uint32_t { F16 = 1, F32 = 2, F64 = 3 };
 const char *to_string(Storage s);
