@@ -246,7 +246,7 @@ void print_text(const FileReport &r) {
             std::printf("  nodes:    max rel %.2e at %llu nodes (corners + random, finer rule), limit %.2e  %s\n",
                         c.measured, static_cast<unsigned long long>(c.count), c.limit, c.pass ? "PASS" : "FAIL");
         else
-            std::printf("  sampling: max rel %.2e at %llu off-node points (new seed), limit %.2e  %s\n", c.measured,
+            std::printf("  sampling: max rel %.2e at %llu off-node points (not the generator's), limit %.2e  %s\n", c.measured,
                         static_cast<unsigned long long>(c.count), c.limit, c.pass ? "PASS" : "FAIL");
     }
     if (r.status != 0 && !r.message.empty()) std::printf("  %s\n", r.message.c_str());
