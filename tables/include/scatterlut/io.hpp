@@ -52,6 +52,17 @@ std::vector<uint8_t> encode_binary(const Table &table);
 Table decode_binary(const uint8_t *data, size_t size, const std::string &name_for_messages);
 
 // --- OpenEXR ---------------------------------------------------------------------------
+// EXR mapping version written by encode_exr (docs/FORMAT.md §4). 2.0 names the value
+// channels as engine loaders expect (Y, or R, G, B, A) and stores every real number as a
+// decimal string attribute; decode_exr reads 2.x and the older 1.x files (semantic
+// channel names, double attributes). The binary format keeps its own version
+// (kFormatMajor.kFormatMinor).
+inline constexpr uint32_t kExrFormatMajor = 2;
+inline constexpr uint32_t kExrFormatMinor = 0;
+// The EXR channel that holds table channel `index` of a table with `count` channels in a
+// version-2 file: "Y" for a single channel; "R", "G", "B", "A" for 2 to 4 channels (in
+// table order); the table channel's own name beyond 4.
+std::string exr_channel_name(size_t count, size_t index, const std::string &table_channel_name);
 // True if this library was built with OpenEXR; otherwise the functions below throw
 // (LoadError for the readers, std::runtime_error for the writers).
 bool have_openexr();
@@ -102,6 +113,12 @@ void check_limits(const Table &table);
 std::vector<uint8_t> encode_payload(const Table &table);
 // "(i0, i1, …), channel 'name'" for the value at flat index i.
 std::string describe_value(const Table &table, size_t i);
+// The shortest decimal text that reads back as exactly x ("0.5", "1e-05", "-inf", "nan"),
+// locale-independent, for metadata stored as text (EXR 2.x attributes, KTX2 key/values).
+std::string decimal_text(double x);
+// Parses all of s as a decimal number (as decimal_text writes it; also "inf", "nan").
+// False if s is empty or holds anything else.
+bool parse_decimal_text(const std::string &s, double *out);
 } // namespace detail
 
 } // namespace scatterlut
