@@ -12,15 +12,16 @@ CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSCATTERLUT_REQUIRE_ALL_TESTS=
 # --no-install-recommends: the OpenCL runtime (PoCL) and headers, the libraries, the
 # shader tools and Mesa's llvmpipe behind EGL (libopengl-dev: CMake's OpenGL::EGL needs
 # libOpenGL), clang's libFuzzer, mpmath for the reference-value script, and node with npm
-# for the engine-loader tests (three.js from npm, pinned in tests/js/package-lock.json; an npm
-# that came with another nodejs build, such as NodeSource's, counts as installed).
+# for the engine-loader tests and the web demo (three.js and puppeteer-core from npm, pinned
+# in tests/js/ and examples/web/package-lock.json; an npm that came with another nodejs
+# build, such as NodeSource's, counts as installed), and Chromium for the browser test.
 DEB_PACKAGES := cmake g++ make pkg-config python3 python3-mpmath \
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo \
   libopenexr-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev \
   libboost-math-dev libgtest-dev libbenchmark-dev \
   glslang-tools spirv-cross libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri \
   clang libclang-rt-14-dev zlib1g-dev \
-  nodejs npm
+  nodejs npm chromium
 
 .PHONY: all run test deps js-deps configure build clean
 
@@ -43,15 +44,18 @@ deps:
 	  fi; \
 	fi
 
-# The npm modules of tests/js, exactly as package-lock.json pins them. Offline once done:
-# skipped while node_modules is newer than the lock file (npm ci rewrites it).
-JS_DIR := tests/js
+# The npm modules of tests/js and examples/web, exactly as their package-lock.json pin them.
+# Offline once done: skipped while node_modules is newer than the lock file (npm ci
+# rewrites it).
+JS_DIRS := tests/js examples/web
 js-deps: deps
-	@if [ $(JS_DIR)/node_modules/.package-lock.json -nt $(JS_DIR)/package-lock.json ]; then \
-	  echo "$(JS_DIR): npm modules current"; \
-	else \
-	  cd $(JS_DIR) && npm ci --no-audit --no-fund; \
-	fi
+	@for d in $(JS_DIRS); do \
+	  if [ $$d/node_modules/.package-lock.json -nt $$d/package-lock.json ]; then \
+	    echo "$$d: npm modules current"; \
+	  else \
+	    (cd $$d && npm ci --no-audit --no-fund) || exit 1; \
+	  fi; \
+	done
 
 configure: deps
 	cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
