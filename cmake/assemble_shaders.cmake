@@ -1,12 +1,13 @@
-# Assembles one GPU sampling snippet (GLSL or HLSL) from its one source: the
-# language-neutral body tables/shaders/src/<name>.slsl, the language prelude
-# (prelude.glsl / prelude.hlsl: texture access, infinity, constant arrays), the shared
+# Assembles one GPU sampling snippet (GLSL, GLSL ES 3.00 for WebGL2, or HLSL) from its one
+# source: the language-neutral body tables/shaders/src/<name>.slsl, the language prelude
+# (prelude.glsl / prelude.essl / prelude.hlsl: texture access, infinity, constant arrays,
+# ES precision), the shared
 # float math and C-subset layer (common.slsl) and, copied verbatim into that layer, the
 # regions between SLUT_SHADER_BEGIN and SLUT_SHADER_END of the kernels/ headers: the
 # axis maps and closed forms the generator and the C++ sampler compile, compiled a third
 # time as GLSL/HLSL (docs/SHADERS.md, "One source"). Their block comments are dropped
 # (the derivations stay in the headers; the snippets stay ASCII).
-# Usage: cmake -DLANG=glsl|hlsl -DNAME=airlight -DSRC_DIR=tables/shaders/src
+# Usage: cmake -DLANG=glsl|hlsl|essl -DNAME=airlight -DSRC_DIR=tables/shaders/src
 #              -DKERNELS_DIR=kernels -DHEADERS="slut_axes.h|slut_nearlight.h" -DOUT=file
 #              -P assemble_shaders.cmake
 cmake_policy(VERSION 3.20)
@@ -19,8 +20,10 @@ if(LANG STREQUAL "glsl")
   set(lang_name "GLSL")
 elseif(LANG STREQUAL "hlsl")
   set(lang_name "HLSL")
+elseif(LANG STREQUAL "essl")
+  set(lang_name "GLSL ES 3.00 (WebGL2)")
 else()
-  message(FATAL_ERROR "assemble_shaders.cmake: LANG must be glsl or hlsl, not '${LANG}'")
+  message(FATAL_ERROR "assemble_shaders.cmake: LANG must be glsl, hlsl or essl, not '${LANG}'")
 endif()
 
 # Text of `file` without its /* ... */ comments, blank-line runs collapsed.
@@ -122,7 +125,7 @@ ${doc}#ifndef ${guard}
 #ifndef SLUT_SHADER_COMMON
 #define SLUT_SHADER_COMMON
 ${prelude}
-// ==== BEGIN SHARED BODY (identical in the GLSL and the HLSL snippet)
+// ==== BEGIN SHARED BODY (identical in the GLSL, GLSL ES and HLSL snippets)
 ${common}#endif // SLUT_SHADER_COMMON
 ${code}
 // ==== END SHARED BODY ====

@@ -216,6 +216,7 @@ int main(int argc, char **argv) {
         std::printf("time table: %.1f ms  (%.2f us/pixel)\n", ms_table, 1e3 * ms_table / (kWidth * kHeight));
         std::printf("time exact: %.1f ms  (%.2f us/pixel)\n", ms_exact, 1e3 * ms_exact / (kWidth * kHeight));
         std::printf("PSNR 8-bit tone-mapped: %.2f dB (max |diff| %zu levels)\n", p8, max8);
+        std::printf("exposure %.17g (the web demo's exposure= for the same picture)\n", exposure);
         std::printf("PSNR linear radiance (peak %.4g W/(m2 sr)): %.2f dB; max rel error %.3g\n", peak, plin, max_rel);
         std::printf("wrote %s/table.png and %s/exact.png\n", dir.c_str(), dir.c_str());
         if (!(p8 >= 45.0)) {

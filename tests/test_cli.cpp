@@ -1,4 +1,5 @@
 // Smoke tests of the `scatterlut` executable: exit codes, files, and eval's JSON lines.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -37,6 +38,44 @@ TEST(Cli, BadArgumentsExitNonZero) {
     EXPECT_EQ(run("generate --n-u 3").exit_code, 2);          // out of range
     EXPECT_EQ(run("generate --format png").exit_code, 2);     // not a member
     EXPECT_EQ(run("eval --table /nonexistent.slut").exit_code, 2);
+}
+
+// --format ktx2 writes only .ktx2 files (KTX 2.0 identifier first); f64 has no KTX2 form.
+TEST(Cli, GenerateKtx2Only) {
+    const std::string dir = out_dir() + "_ktx2";
+    std::filesystem::remove_all(dir);
+    const Result f64 = run("generate --format ktx2 --storage f64 --out " + dir + " --n-u 16 --n-w 16");
+    EXPECT_EQ(f64.exit_code, 2);
+    EXPECT_NE(f64.err.find("KTX2 output holds no f64"), std::string::npos) << f64.err;
+    EXPECT_FALSE(std::filesystem::exists(dir));
+    const Result gen = run("generate --format ktx2 --out " + dir + " --n-u 16 --n-w 16");
+    ASSERT_EQ(gen.exit_code, 0) << gen.out << gen.err;
+    std::vector<std::string> names;
+    for (const auto &e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"airlight_F.ktx2", "manifest.json", "near_light_E3.ktx2",
+                                               "near_light_E4.ktx2"}));
+    {
+        std::ifstream in(dir + "/airlight_F.ktx2", std::ios::binary);
+        char id[12] = {};
+        in.read(id, 12);
+        EXPECT_EQ(std::string(id, 12), std::string("\xabKTX 20\xbb\r\n\x1a\n", 12));
+    }
+    // The manifest ties the KTX2 files to the run: validate DIR passes, and fails (exit 1)
+    // once a byte of one of them changes.
+    const Result set = run("validate " + dir);
+    EXPECT_EQ(set.exit_code, 0) << set.out << set.err;
+    {
+        std::fstream f(dir + "/near_light_E3.ktx2", std::ios::in | std::ios::out | std::ios::binary);
+        f.seekg(-1, std::ios::end);
+        const char last = static_cast<char>(f.get());
+        f.seekp(-1, std::ios::end);
+        f.put(static_cast<char>(last ^ 0x5a));
+    }
+    const Result tampered = run("validate " + dir);
+    EXPECT_EQ(tampered.exit_code, 1) << tampered.out << tampered.err;
+    EXPECT_NE(tampered.out.find("near_light_E3.ktx2"), std::string::npos) << tampered.out;
+    std::filesystem::remove_all(dir);
 }
 
 TEST(Cli, GenerateThenEval) {

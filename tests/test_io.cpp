@@ -17,6 +17,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <random>
 #include <string>
 #include <system_error>
@@ -849,19 +850,20 @@ TEST(Exr, F64IsRefusedWithAHint) {
     }
 }
 
+// Table channels F, ln_G are the EXR channels R, G (mapping version 2, docs/FORMAT.md §4).
 TEST(ExrHostile, MissingChannel) {
     Bytes b = encode_exr(make_table(2, Storage::F16));
-    const size_t type_at = chlist_type_offset(b, "ln_G");
-    b[type_at - 2] = 'X'; // rename "ln_G" → "ln_X" in the channel list only
-    expect_exr_error(b, "missing channel 'ln_G' (expected HALF pixels for storage f16)");
+    const size_t type_at = chlist_type_offset(b, "G");
+    b[type_at - 2] = 'X'; // rename "G" → "X" in the channel list only
+    expect_exr_error(b, "missing channel 'ln_G' (expected HALF pixels for storage f16) in EXR channel 'G'");
 }
 
 TEST(ExrHostile, WrongPixelType) {
     Bytes b = encode_exr(make_table(2, Storage::F16));
-    put_u32(&b[chlist_type_offset(b, "F")], 2); // FLOAT
-    expect_exr_error(b, "channel 'F' has pixel type FLOAT, expected HALF (storage f16)");
+    put_u32(&b[chlist_type_offset(b, "R")], 2); // FLOAT
+    expect_exr_error(b, "channel 'F' has pixel type FLOAT, expected HALF (storage f16) in EXR channel 'R'");
     b = encode_exr(make_table(1, Storage::F32));
-    put_u32(&b[chlist_type_offset(b, "ln_G")], 0); // UINT
+    put_u32(&b[chlist_type_offset(b, "G")], 0); // UINT
     expect_exr_error(b, "channel 'ln_G' has pixel type UINT, expected FLOAT");
 }
 
@@ -872,9 +874,12 @@ TEST(ExrHostile, EditedAttributesAndVersions) {
     expect_exr_error(b, "header checksum mismatch");
     b = good;
     const size_t major_at = find_bytes(b, std::string("scatterlut.format_major\0int\0", 28)) + 28 + 4;
-    put_u32(&b[major_at], 2);
-    expect_exr_error(b, "test.exr: format version 2." + std::to_string(kFormatMinor) +
-                            " is newer than this reader (1.x); upgrade scatterlut");
+    put_u32(&b[major_at], kExrFormatMajor + 1);
+    expect_exr_error(b, "test.exr: format version " + std::to_string(kExrFormatMajor + 1) + "." +
+                            std::to_string(kExrFormatMinor) + " is newer than this reader (" +
+                            std::to_string(kExrFormatMajor) + ".x); upgrade scatterlut");
+    put_u32(&b[major_at], 0);
+    expect_exr_error(b, "test.exr: format version 0." + std::to_string(kExrFormatMinor) + " is not supported");
     b = good;
     const size_t count_at = find_bytes(b, std::string("scatterlut.axis.1.count\0int\0", 28)) + 28 + 4;
     put_u32(&b[count_at], 7);
@@ -948,20 +953,141 @@ TEST(Exr, NewerMinorWithUnknownAttributesIsRead) {
     const size_t at = find_bytes(b, std::string("screenWindowWidth\0float\0", 24));
     std::memcpy(&b[at], "scatterlut.zz_new", 17);
     const std::string minor_attr("scatterlut.format_minor\0int\0", 28);
-    put_u32(&b[find_bytes(b, minor_attr) + minor_attr.size() + 4], kFormatMinor + 1);
+    put_u32(&b[find_bytes(b, minor_attr) + minor_attr.size() + 4], kExrFormatMinor + 1);
     refresh_exr_header_checksum(b);
     const Table back = decode_exr(b.data(), b.size(), "newer.exr");
     expect_same_metadata(t, back);
     expect_values_rounded(t, back);
 
-    put_u32(&b[find_bytes(b, minor_attr) + minor_attr.size() + 4], kFormatMinor);
+    put_u32(&b[find_bytes(b, minor_attr) + minor_attr.size() + 4], kExrFormatMinor);
     refresh_exr_header_checksum(b);
-    expect_exr_error(b, "unknown attribute 'scatterlut.zz_new' (format version 1." + std::to_string(kFormatMinor) +
-                            " defines no such attribute)");
+    expect_exr_error(b, "unknown attribute 'scatterlut.zz_new' (format version " + std::to_string(kExrFormatMajor) +
+                            "." + std::to_string(kExrFormatMinor) + " defines no such attribute)");
     // And the helper is faithful: refreshing an unedited file changes nothing.
     Bytes same = good;
     refresh_exr_header_checksum(same);
     EXPECT_EQ(same, good);
+}
+
+
+// The attributes of an EXR header as the file lays them out: name → (type, value bytes).
+std::map<std::string, std::pair<std::string, Bytes>> exr_attributes(const Bytes &b) {
+    std::map<std::string, std::pair<std::string, Bytes>> out;
+    size_t pos = 8;
+    while (b[pos] != 0) {
+        const std::string name = reinterpret_cast<const char *>(&b[pos]);
+        pos += name.size() + 1;
+        const std::string type = reinterpret_cast<const char *>(&b[pos]);
+        pos += type.size() + 1;
+        const size_t size = get_u32(&b[pos]);
+        pos += 4;
+        out[name] = {type, Bytes(b.begin() + static_cast<long>(pos), b.begin() + static_cast<long>(pos + size))};
+        pos += size;
+    }
+    return out;
+}
+
+// Mapping version 2 is what engine loaders open: one table channel is the EXR channel Y,
+// two to four are R, G, B, A in table order; no attribute is a `double` (three.js's
+// EXRLoader skips them): the reals are decimal strings that read back exactly.
+TEST(Exr, EngineChannelNamesAndRealsAsText) {
+    Table one = make_table(2, Storage::F32);
+    one.channels.resize(1);
+    one.values.clear();
+    for (size_t n = 0; n < one.node_count(); ++n) one.values.push_back(0.25 + 1e-3 * static_cast<double>(n));
+    one.axes[0].map.scale = 0.1; // no short binary fraction: the text must carry all 17 digits
+    for (const Table &t : {one, make_table(2, Storage::F16)}) {
+        const Bytes b = encode_exr(t);
+        const auto attrs = exr_attributes(b);
+        std::vector<std::string> channels;
+        const Bytes &chlist = attrs.at("channels").second;
+        for (size_t p = 0; chlist[p] != 0;) {
+            channels.emplace_back(reinterpret_cast<const char *>(&chlist[p]));
+            p += channels.back().size() + 1 + 16;
+        }
+        const std::vector<std::string> want =
+            t.channels.size() == 1 ? std::vector<std::string>{"Y"} : std::vector<std::string>{"G", "R"}; // EXR sorts
+        EXPECT_EQ(channels, want);
+        for (size_t c = 0; c < t.channels.size(); ++c) {
+            const auto &a = attrs.at("scatterlut.channel." + std::to_string(c) + ".exr_channel");
+            EXPECT_EQ(a.first, "string");
+            EXPECT_EQ(std::string(a.second.begin(), a.second.end()), exr_channel_name(t.channels.size(), c, ""));
+        }
+        for (const auto &kv : attrs) EXPECT_NE(kv.second.first, "double") << kv.first;
+        const auto &scale = attrs.at("scatterlut.axis.0.scale");
+        EXPECT_EQ(scale.first, "string");
+        double v = 0;
+        ASSERT_TRUE(detail::parse_decimal_text(std::string(scale.second.begin(), scale.second.end()), &v));
+        EXPECT_EQ(v, t.axes[0].map.scale);
+        EXPECT_EQ(get_u32(&attrs.at("scatterlut.format_major").second[0]), kExrFormatMajor);
+        const Table back = decode_exr(b.data(), b.size(), "mem.exr");
+        expect_same_metadata(t, back);
+        expect_values_rounded(t, back);
+    }
+    EXPECT_EQ(exr_channel_name(5, 4, "ln_X"), "ln_X"); // beyond RGBA: the table's own names
+}
+
+TEST(Exr, DecimalTextReadsBackExactly) {
+    for (double x : {0.0, -0.0, 0.1, 1.0 / 3.0, 1e-300, 4.9e-324, 1.7976931348623157e308, -2.5, SLUT_PIO2_HI}) {
+        double y = 1;
+        ASSERT_TRUE(detail::parse_decimal_text(detail::decimal_text(x), &y)) << detail::decimal_text(x);
+        EXPECT_EQ(std::memcmp(&x, &y, sizeof x), 0) << detail::decimal_text(x);
+    }
+    EXPECT_EQ(detail::decimal_text(0.5), "0.5");
+    EXPECT_EQ(detail::decimal_text(1e-5), "1e-05");
+    double y;
+    for (const char *bad : {"", " 1", "1 ", "1,5", "0x1p3", "+1", "1e", "--1"})
+        EXPECT_FALSE(detail::parse_decimal_text(bad, &y)) << bad;
+}
+
+// A version-2 file whose channel mapping or real-number text is edited (checksum made
+// consistent) is refused with the attribute named.
+TEST(ExrHostile, EditedChannelMappingAndRealText) {
+    const Bytes good = encode_exr(make_table(2, Storage::F16));
+    Bytes b = good;
+    const std::string exr_attr("scatterlut.channel.1.exr_channel\0string\0", 40);
+    b[find_bytes(b, exr_attr) + exr_attr.size() + 4] = 'B';
+    refresh_exr_header_checksum(b);
+    expect_exr_error(b, "channel 1 ('ln_G'): attribute 'scatterlut.channel.1.exr_channel' = 'B', expected 'G'");
+    b = good;
+    const std::string min_attr("scatterlut.axis.0.min\0string\0", 29);
+    b[find_bytes(b, min_attr) + min_attr.size() + 4] = 'x'; // "0" → "x"
+    refresh_exr_header_checksum(b);
+    expect_exr_error(b, "attribute 'scatterlut.axis.0.min' = 'x' is not a decimal number");
+}
+
+// Files written by the version-1.1 mapping (channels named after the table's channels,
+// `double` attributes; tests/data/exr-format-1.1, written by scatterlut before 2.0 from
+// make_table) are still read, with the same metadata and values.
+TEST(Exr, ReadsVersion11Files) {
+    const std::string dir = std::string(SLUT_SOURCE_DIR) + "/tests/data/exr-format-1.1/";
+    for (size_t dims : {2, 4}) {
+        const Storage s = dims == 2 ? Storage::F16 : Storage::F32;
+        SCOPED_TRACE(std::to_string(dims) + "-D " + to_string(s));
+        const Table t = make_table(dims, s);
+        const Bytes old = read_all(dir + "make_table_" + std::to_string(dims) + "d_" + to_string(s) + ".exr");
+        const auto attrs = exr_attributes(old);
+        ASSERT_EQ(get_u32(&attrs.at("scatterlut.format_major").second[0]), 1u);
+        ASSERT_EQ(attrs.at("scatterlut.axis.0.min").first, "double");
+        const Table back = decode_exr(old.data(), old.size(), "old.exr");
+        expect_same_metadata(t, back);
+        expect_values_rounded(t, back);
+        EXPECT_EQ(back.values, decode_exr(encode_exr(back).data(), encode_exr(back).size(), "new.exr").values);
+    }
+    // Version-1 messages name the table channel only, as before.
+    Bytes b = read_all(dir + "make_table_2d_f16.exr");
+    b[chlist_type_offset(b, "ln_G") - 2] = 'X';
+    expect_exr_error(b, "missing channel 'ln_G' (expected HALF pixels for storage f16)");
+    b = read_all(dir + "make_table_2d_f16.exr");
+    put_u32(&b[chlist_type_offset(b, "F")], 2);
+    expect_exr_error(b, "channel 'F' has pixel type FLOAT, expected HALF (storage f16)");
+    // An unknown scatterlut.* attribute in a 1.1 file is still corruption (1.1 is the
+    // newest version-1 mapping), as in NewerMinorWithUnknownAttributesIsRead.
+    const size_t at = find_bytes(b, std::string("screenWindowWidth\0float\0", 24));
+    b = read_all(dir + "make_table_2d_f16.exr");
+    std::memcpy(&b[at], "scatterlut.zz_new", 17);
+    refresh_exr_header_checksum(b);
+    expect_exr_error(b, "unknown attribute 'scatterlut.zz_new' (format version 1.1 defines no such attribute)");
 }
 
 // Attribute sizes that disagree with the value's own structure. OpenEXR reads a value by
@@ -1097,11 +1223,11 @@ std::vector<Corruption> corruptions() {
 #ifdef SCATTERLUT_HAS_OPENEXR
     const Bytes exr = encode_exr(make_table(2, Storage::F16));
     b = exr;
-    b[chlist_type_offset(b, "ln_G") - 2] = 'X';
-    out.push_back({"nochannel.exr", b, "missing channel 'ln_G' (expected HALF pixels for storage f16)"});
+    b[chlist_type_offset(b, "G") - 2] = 'X';
+    out.push_back({"nochannel.exr", b, "missing channel 'ln_G' (expected HALF pixels for storage f16) in EXR channel 'G'"});
     b = exr;
-    put_u32(&b[chlist_type_offset(b, "F")], 2);
-    out.push_back({"type.exr", b, "channel 'F' has pixel type FLOAT, expected HALF (storage f16)"});
+    put_u32(&b[chlist_type_offset(b, "R")], 2);
+    out.push_back({"type.exr", b, "channel 'F' has pixel type FLOAT, expected HALF (storage f16) in EXR channel 'R'"});
     out.push_back({"exr-oom-1.exr", read_all(std::string(SLUT_SOURCE_DIR) + "/tests/fuzz/known/exr-oom-1"),
                    "EXR header: attribute 'channels' of type chlist declares 2327 bytes"});
 #endif

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -48,21 +49,39 @@ std::vector<Range> channel_ranges(const Table &t) {
     return out;
 }
 
-// The file's own format version: read from the binary preamble (magic, u32 major, u32
-// minor, little-endian); the loader has already accepted it. EXR files carry it as
-// attributes the Table does not keep: reported as the major version this reader accepts.
+// The file's own format version, for a file the loader has already accepted: the binary
+// preamble (magic, u32 major, u32 minor, little-endian), or the EXR attributes
+// scatterlut.format_major/minor (int), found by walking the EXR attribute list
+// (name\0 type\0 i32 size value …, \0 after the 8-byte preamble).
 std::string file_format_version(const std::string &path) {
-    unsigned char b[16] = {};
     std::ifstream in(path, std::ios::binary);
-    in.read(reinterpret_cast<char *>(b), sizeof b);
-    if (in.gcount() == 16 && std::memcmp(b, "SLUTTBL\0", 8) == 0) {
-        auto u32 = [&](int o) {
-            return static_cast<uint32_t>(b[o]) | static_cast<uint32_t>(b[o + 1]) << 8 |
-                   static_cast<uint32_t>(b[o + 2]) << 16 | static_cast<uint32_t>(b[o + 3]) << 24;
-        };
+    const std::vector<unsigned char> b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    auto u32 = [&](size_t o) {
+        return static_cast<uint32_t>(b[o]) | static_cast<uint32_t>(b[o + 1]) << 8 |
+               static_cast<uint32_t>(b[o + 2]) << 16 | static_cast<uint32_t>(b[o + 3]) << 24;
+    };
+    if (b.size() >= 16 && std::memcmp(b.data(), "SLUTTBL\0", 8) == 0)
         return std::to_string(u32(8)) + "." + std::to_string(u32(12)) + " (binary)";
+    long major = -1, minor = -1;
+    for (size_t pos = 8; pos < b.size() && b[pos] != 0;) {
+        const void *name_end = std::memchr(&b[pos], 0, b.size() - pos);
+        if (!name_end) break;
+        const std::string name(reinterpret_cast<const char *>(&b[pos]));
+        pos += name.size() + 1;
+        const void *type_end = pos < b.size() ? std::memchr(&b[pos], 0, b.size() - pos) : nullptr;
+        if (!type_end) break;
+        const std::string type(reinterpret_cast<const char *>(&b[pos]));
+        pos += type.size() + 1;
+        if (b.size() - pos < 4) break;
+        const size_t size = u32(pos);
+        pos += 4;
+        if (size > b.size() - pos) break;
+        if (type == "int" && size == 4 && name == "scatterlut.format_major") major = static_cast<int32_t>(u32(pos));
+        if (type == "int" && size == 4 && name == "scatterlut.format_minor") minor = static_cast<int32_t>(u32(pos));
+        pos += size;
     }
-    return std::to_string(kFormatMajor) + ".x (OpenEXR)";
+    if (major < 0 || minor < 0) return "unknown (OpenEXR)";
+    return std::to_string(major) + "." + std::to_string(minor) + " (OpenEXR)";
 }
 
 nlohmann::json num(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
@@ -130,8 +149,12 @@ void print_json(const InspectOptions &opt, const Table &t, const nlohmann::json 
 
 void print_text(const InspectOptions &opt, const Table &t, const nlohmann::json &preview) {
     std::printf("%s\n", opt.file.c_str());
-    std::printf("  format version  %s, read by a %u.%u reader\n", file_format_version(opt.file).c_str(), kFormatMajor,
-                kFormatMinor);
+    const std::string version = file_format_version(opt.file);
+    if (version.find("OpenEXR") != std::string::npos)
+        std::printf("  format version  %s, read by a %u.%u EXR reader (and 1.x)\n", version.c_str(), kExrFormatMajor,
+                    kExrFormatMinor);
+    else
+        std::printf("  format version  %s, read by a %u.%u reader\n", version.c_str(), kFormatMajor, kFormatMinor);
     std::printf("  kind            %s (quantity version %u)\n", t.kind.c_str(), t.quantity_version);
     std::printf("  storage         %s, %zu nodes\n", to_string(t.storage), t.node_count());
     std::printf("  axes (axis 0 varies fastest):\n");

@@ -18,7 +18,7 @@ bool is_table_file(const std::string &name) {
         const std::string s(suffix);
         return name.size() > s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
     };
-    return name[0] != '.' && (ends(".slut") || ends(".exr"));
+    return name[0] != '.' && (ends(".slut") || ends(".exr") || ends(".ktx2"));
 }
 
 } // namespace

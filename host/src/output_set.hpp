@@ -18,7 +18,7 @@ inline constexpr uint64_t kMaxManifestBytes = 16u << 20; // scene text ≤ 4 MiB
 struct ManifestFile {
     std::string name;   // file name inside the directory
     std::string kind;   // table kind
-    std::string format; // "bin" or "exr"
+    std::string format; // "bin", "exr" or "ktx2"
     uint64_t bytes = 0;
     uint64_t fnv1a64 = 0; // of the whole file
 };

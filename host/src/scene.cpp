@@ -404,11 +404,14 @@ Scene parse_scene(const std::string &text, const std::string &source) {
     if (const toml::table *o = rd.table(root, "output", "")) {
         rd.only_keys(*o, "output", {"directory", "format", "storage"});
         s.output.directory = rd.string(*o, "directory", "output", false, s.output.directory);
-        s.output.format = rd.string(*o, "format", "output", false, s.output.format, {"bin", "exr", "both"});
+        s.output.format =
+            rd.string(*o, "format", "output", false, s.output.format, {"bin", "exr", "ktx2", "both", "all"});
         s.output.storage = rd.string(*o, "storage", "output", false, s.output.storage, {"f16", "f32", "f64"});
-        if (s.output.format == "exr" && s.output.storage == "f64")
+        if ((s.output.format == "exr" || s.output.format == "ktx2") && s.output.storage == "f64")
             rd.fail(o->get("storage")->source(), "output.storage",
-                    "expected 'f16' or 'f32' with format 'exr' (EXR holds no f64; f64 needs format 'bin' or 'both')");
+                    "expected 'f16' or 'f32' with format '" + s.output.format + "' (" +
+                        (s.output.format == "exr" ? "EXR" : "KTX2") +
+                        " holds no f64; f64 needs format 'bin', 'both' or 'all')");
     }
     s.media = read_array<SceneMedium>(rd, root, "medium", [&](const Reader &r, const toml::table &t, const std::string &p) {
         return read_medium(r, t, p, s.relative_error);

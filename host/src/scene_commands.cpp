@@ -51,8 +51,10 @@ void add_scene_options(CLI::App *cmd, SceneOptions &o) {
     cmd->add_option("--scene", o.scene_file, "Scene file (TOML, docs/SCENES.md); default: the embedded default scene")
         ->check(CLI::ExistingFile);
     cmd->add_option("--device", o.device, "OpenCL device: P:D index or name substring (env SCATTERLUT_DEVICE)");
-    cmd->add_option("--format", o.format, "File format, overrides the scene's output.format")
-        ->check(CLI::IsMember({"bin", "exr", "both"}));
+    cmd->add_option("--format", o.format,
+                    "File format, overrides the scene's output.format: bin (.slut), exr, ktx2, both (bin and exr), "
+                    "all (bin, exr and ktx2)")
+        ->check(CLI::IsMember({"bin", "exr", "ktx2", "both", "all"}));
     cmd->add_option("--storage", o.storage, "Stored precision, overrides output.storage (f16/f32 for EXR, f32/f64 binary)")
         ->check(CLI::IsMember({"f16", "f32", "f64"}));
     cmd->add_option("--u-max", o.u_max, "Airlight table: largest u = sigma_t*D*sin(gamma) (default: from the scene)")
@@ -76,6 +78,9 @@ ScenePlan make_plan(const SceneOptions &o, Scene scene) {
     if (!o.storage.empty()) scene.output.storage = o.storage;
     if (scene.output.format == "exr" && scene.output.storage == "f64")
         throw std::invalid_argument("--storage f64 needs a binary format (--format bin or both): EXR holds no f64");
+    if (scene.output.format == "ktx2" && scene.output.storage == "f64")
+        throw std::invalid_argument("--storage f64 needs a binary format (--format bin, both or all): KTX2 output "
+                                    "holds no f64");
     Storage storage = Storage::F32;
     storage_from_string(scene.output.storage, &storage);
     return derive_plan(scene, storage, AirlightOverrides{o.u_max, o.w_min, o.n_u, o.n_w});
@@ -273,10 +278,15 @@ void write_output_set(const ScenePlan &plan, const std::string &out_dir, const s
     };
     std::vector<File> files;
     for (const PlannedTable &t : plan.tables) {
-        if (format == "bin" || format == "both") files.push_back({t.kind + ".slut", t.kind, "bin", encode_binary(t.table)});
-        if (format == "exr" || format == "both") {
+        if (format == "bin" || format == "both" || format == "all")
+            files.push_back({t.kind + ".slut", t.kind, "bin", encode_binary(t.table)});
+        if (format == "exr" || format == "both" || format == "all") {
             if (t.table.storage == Storage::F64) std::cout << t.kind << ": no EXR (f64 storage is binary only)\n";
             else files.push_back({t.kind + ".exr", t.kind, "exr", encode_exr(t.table)});
+        }
+        if (format == "ktx2" || format == "all") {
+            if (t.table.storage == Storage::F64) std::cout << t.kind << ": no KTX2 (f64 storage is binary only)\n";
+            else files.push_back({t.kind + ".ktx2", t.kind, "ktx2", encode_ktx2(t.table)});
         }
     }
     nlohmann::json manifest;

@@ -8,6 +8,11 @@
 // FLOAT for f32; f64 has no EXR pixel type. All metadata are `scatterlut.*` header
 // attributes, protected by a checksum over their canonical serialization; the pixels
 // are protected by the same FNV-1a payload checksum as the binary format.
+//
+// Mapping version 2 (written) names the channels as engine loaders expect (Y, or R, G,
+// B, A; exr_channel_name) and keeps the table's channel names in attributes; every real
+// number is a decimal string attribute (loaders such as three.js's skip `double`).
+// Version 1 files (semantic channel names, `double` attributes) are still read.
 #include "scatterlut/io.hpp"
 
 #include <cerrno>
@@ -157,10 +162,14 @@ std::vector<uint8_t> encode_exr(const Table &t) {
     Imf::Header h(static_cast<int>(width), static_cast<int>(height));
     h.compression() = Imf::ZIP_COMPRESSION;
     const Imf::PixelType type = t.storage == Storage::F16 ? Imf::HALF : Imf::FLOAT;
-    for (const Channel &c : t.channels) h.channels().insert(c.name, Imf::Channel(type));
+    std::vector<std::string> exr_names;
+    for (size_t i = 0; i < nc; ++i) exr_names.push_back(exr_channel_name(nc, i, t.channels[i].name));
+    for (const std::string &n : exr_names) h.channels().insert(n, Imf::Channel(type));
+    // Every real number as text: the shortest decimal that reads back exactly.
+    auto real = [](double x) { return Imf::StringAttribute(detail::decimal_text(x)); };
 
-    h.insert(kPrefix + "format_major", Imf::IntAttribute(static_cast<int>(kFormatMajor)));
-    h.insert(kPrefix + "format_minor", Imf::IntAttribute(static_cast<int>(kFormatMinor)));
+    h.insert(kPrefix + "format_major", Imf::IntAttribute(static_cast<int>(kExrFormatMajor)));
+    h.insert(kPrefix + "format_minor", Imf::IntAttribute(static_cast<int>(kExrFormatMinor)));
     h.insert(kPrefix + "kind", Imf::StringAttribute(t.kind));
     h.insert(kPrefix + "quantity_version", Imf::IntAttribute(static_cast<int>(t.quantity_version)));
     h.insert(kPrefix + "storage", Imf::StringAttribute(to_string(t.storage)));
@@ -170,9 +179,9 @@ std::vector<uint8_t> encode_exr(const Table &t) {
         const Axis &a = t.axes[i];
         h.insert(axis_key(i, "name"), Imf::StringAttribute(a.name));
         h.insert(axis_key(i, "meaning"), Imf::StringAttribute(a.meaning));
-        h.insert(axis_key(i, "min"), Imf::DoubleAttribute(a.map.min));
-        h.insert(axis_key(i, "max"), Imf::DoubleAttribute(a.map.max));
-        h.insert(axis_key(i, "scale"), Imf::DoubleAttribute(a.map.scale));
+        h.insert(axis_key(i, "min"), real(a.map.min));
+        h.insert(axis_key(i, "max"), real(a.map.max));
+        h.insert(axis_key(i, "scale"), real(a.map.scale));
         h.insert(axis_key(i, "warp"), Imf::IntAttribute(a.map.warp));
         h.insert(axis_key(i, "warp_name"), Imf::StringAttribute(warp_name(a.map.warp)));
         h.insert(axis_key(i, "count"), Imf::IntAttribute(a.map.count));
@@ -182,13 +191,14 @@ std::vector<uint8_t> encode_exr(const Table &t) {
         h.insert(channel_key(i, "name"), Imf::StringAttribute(t.channels[i].name));
         h.insert(channel_key(i, "meaning"), Imf::StringAttribute(t.channels[i].meaning));
         h.insert(channel_key(i, "encoding"), Imf::StringAttribute(to_string(t.channels[i].encoding)));
+        h.insert(channel_key(i, "exr_channel"), Imf::StringAttribute(exr_names[i]));
     }
     const Accuracy &ac = t.accuracy;
-    h.insert(kPrefix + "accuracy.integration_max_rel", Imf::DoubleAttribute(ac.integration_max_rel));
-    h.insert(kPrefix + "accuracy.sampling_max_rel", Imf::DoubleAttribute(ac.sampling_max_rel));
-    h.insert(kPrefix + "accuracy.sampling_p99_rel", Imf::DoubleAttribute(ac.sampling_p99_rel));
-    h.insert(kPrefix + "accuracy.sampling_median_rel", Imf::DoubleAttribute(ac.sampling_median_rel));
-    h.insert(kPrefix + "accuracy.storage_max_rel", Imf::DoubleAttribute(ac.storage_max_rel));
+    h.insert(kPrefix + "accuracy.integration_max_rel", real(ac.integration_max_rel));
+    h.insert(kPrefix + "accuracy.sampling_max_rel", real(ac.sampling_max_rel));
+    h.insert(kPrefix + "accuracy.sampling_p99_rel", real(ac.sampling_p99_rel));
+    h.insert(kPrefix + "accuracy.sampling_median_rel", real(ac.sampling_median_rel));
+    h.insert(kPrefix + "accuracy.storage_max_rel", real(ac.storage_max_rel));
     h.insert(kPrefix + "accuracy.sampling_points", Imf::StringAttribute(std::to_string(ac.sampling_points)));
     h.insert(kPrefix + "accuracy.sampling_domain", Imf::StringAttribute(ac.sampling_domain));
     const Provenance &pv = t.provenance;
@@ -230,8 +240,7 @@ std::vector<uint8_t> encode_exr(const Table &t) {
     }
     Imf::FrameBuffer fb;
     for (size_t c = 0; c < nc; ++c)
-        fb.insert(t.channels[c].name,
-                  Imf::Slice::Make(type, base + c * elem, h.dataWindow(), nc * elem, nc * elem * width));
+        fb.insert(exr_names[c], Imf::Slice::Make(type, base + c * elem, h.dataWindow(), nc * elem, nc * elem * width));
 
     MemOStream out;
     try {
@@ -256,6 +265,8 @@ struct ExrReader {
     std::string name;
     const Imf::Header *h = nullptr;
     std::set<std::string> used; // scatterlut.* attributes this reader understood
+    int major = 0;              // the file's mapping version (1: double attributes, table channel names)
+    std::vector<std::string> exr_channels; // the EXR channel of each table channel
 
     [[noreturn]] void fail(const std::string &what) const { throw LoadError(name + ": " + what); }
     [[noreturn]] void fail_checksum(const std::string &what) const { throw ChecksumError(name + ": " + what); }
@@ -269,7 +280,14 @@ struct ExrReader {
         return a;
     }
     int integer(const std::string &key) { return typed<Imf::IntAttribute>(key, "int")->value(); }
-    double real(const std::string &key) { return typed<Imf::DoubleAttribute>(key, "double")->value(); }
+    // A real number: a `double` attribute in version 1, decimal text from version 2 on.
+    double real(const std::string &key) {
+        if (major < 2) return typed<Imf::DoubleAttribute>(key, "double")->value();
+        const std::string s = text(key, 64);
+        double v;
+        if (!detail::parse_decimal_text(s, &v)) fail("attribute '" + key + "' = '" + s + "' is not a decimal number");
+        return v;
+    }
     std::string text(const std::string &key, size_t max) {
         const std::string &s = typed<Imf::StringAttribute>(key, "string")->value();
         if (s.size() > max)
@@ -308,11 +326,15 @@ Table decode_exr_header(ExrReader &r, const Imf::Header &h) {
     const int major = r.integer(kPrefix + "format_major");
     const int minor = r.integer(kPrefix + "format_minor");
     const std::string version = std::to_string(major) + "." + std::to_string(minor);
-    const std::string ours = std::to_string(kFormatMajor) + ".x";
-    if (major > static_cast<int>(kFormatMajor))
+    const std::string ours = std::to_string(kExrFormatMajor) + ".x";
+    if (major > static_cast<int>(kExrFormatMajor))
         r.fail("format version " + version + " is newer than this reader (" + ours + "); upgrade scatterlut");
-    if (major < static_cast<int>(kFormatMajor) || minor < 0)
+    if (major < 1 || minor < 0)
         r.fail("format version " + version + " is not supported by this reader (" + ours + ")");
+    r.major = major;
+    // The newest minor version this reader knows for the file's major version: 1.1 was the
+    // last of the version-1 mapping.
+    const int known_minor = major == static_cast<int>(kExrFormatMajor) ? static_cast<int>(kExrFormatMinor) : 1;
 
     const uint64_t stored_sum = r.hex(kChecksumPrefix + "header");
     r.hex(kChecksumPrefix + "payload");
@@ -383,6 +405,16 @@ Table decode_exr_header(ExrReader &r, const Imf::Header &h) {
         if (!encoding_from_string(enc, &c.encoding))
             r.fail("channel " + std::to_string(i) + " ('" + c.name + "'): unknown encoding '" + enc +
                    "' (this reader knows linear, log)");
+        if (major >= 2) {
+            const std::string exr = r.text(channel_key(i, "exr_channel"), kMaxNameBytes);
+            const std::string want = exr_channel_name(static_cast<size_t>(n_channels), i, c.name);
+            if (exr != want)
+                r.fail("channel " + std::to_string(i) + " ('" + c.name + "'): attribute '" +
+                       channel_key(i, "exr_channel") + "' = '" + exr + "', expected '" + want + "'");
+            r.exr_channels.push_back(exr);
+        } else {
+            r.exr_channels.push_back(c.name);
+        }
         t.channels.push_back(c);
     }
 
@@ -421,7 +453,7 @@ Table decode_exr_header(ExrReader &r, const Imf::Header &h) {
     }
 
     // Unknown scatterlut.* attributes: skipped from a newer minor version, corrupt otherwise.
-    if (minor <= static_cast<int>(kFormatMinor)) {
+    if (minor <= known_minor) {
         for (auto it = h.begin(); it != h.end(); ++it) {
             const std::string key = it.name();
             if (key.compare(0, kPrefix.size(), kPrefix) == 0 && !r.used.count(key))
@@ -596,20 +628,23 @@ Table decode_exr(const uint8_t *data, size_t size, const std::string &name) {
                    " (axis 0 count x product of the other axis counts)");
         const Imf::PixelType type = t.storage == Storage::F16 ? Imf::HALF : Imf::FLOAT;
         const Imf::ChannelList &cl = hdr.channels();
-        for (const Channel &c : t.channels) {
-            const Imf::Channel *ec = cl.findChannel(c.name);
+        for (size_t c = 0; c < t.channels.size(); ++c) {
+            const std::string &tname = t.channels[c].name, &ename = r.exr_channels[c];
+            // From version 2 on the EXR channel (Y, R, …) differs from the table channel: name both.
+            const std::string where = ename == tname ? "" : " in EXR channel '" + ename + "'";
+            const Imf::Channel *ec = cl.findChannel(ename);
             if (!ec)
-                r.fail("missing channel '" + c.name + "' (expected " + pixel_type_name(type) +
-                       " pixels for storage " + to_string(t.storage) + ")");
+                r.fail("missing channel '" + tname + "' (expected " + pixel_type_name(type) + " pixels for storage " +
+                       to_string(t.storage) + ")" + where);
             if (ec->type != type)
-                r.fail("channel '" + c.name + "' has pixel type " + pixel_type_name(ec->type) + ", expected " +
-                       pixel_type_name(type) + " (storage " + to_string(t.storage) + ")");
+                r.fail("channel '" + tname + "' has pixel type " + pixel_type_name(ec->type) + ", expected " +
+                       pixel_type_name(type) + " (storage " + to_string(t.storage) + ")" + where);
             if (ec->xSampling != 1 || ec->ySampling != 1)
-                r.fail("channel '" + c.name + "' is subsampled; expected one sample per node");
+                r.fail("channel '" + tname + "' is subsampled; expected one sample per node" + where);
         }
         for (auto it = cl.begin(); it != cl.end(); ++it) {
             bool known = false;
-            for (const Channel &c : t.channels) known = known || c.name == it.name();
+            for (const std::string &e : r.exr_channels) known = known || e == it.name();
             if (!known) r.fail(std::string("unexpected channel '") + it.name() + "' (not in scatterlut.channel.*)");
         }
         // Plausibility against the real file size: the line-offset table (8 bytes per
@@ -640,7 +675,7 @@ Table decode_exr(const uint8_t *data, size_t size, const std::string &name) {
         }
         Imf::FrameBuffer fb;
         for (size_t c = 0; c < nc; ++c)
-            fb.insert(t.channels[c].name, Imf::Slice::Make(type, base + c * elem, in.header().dataWindow(), nc * elem,
+            fb.insert(r.exr_channels[c], Imf::Slice::Make(type, base + c * elem, in.header().dataWindow(), nc * elem,
                                                            nc * elem * static_cast<size_t>(w)));
         in.setFrameBuffer(fb);
         in.readPixels(dw.min.y, dw.max.y);

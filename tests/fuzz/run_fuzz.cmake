@@ -14,7 +14,7 @@ set(flags -std=c++17 -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=u
           -DSCATTERLUT_HAS_OPENEXR=1 -I${SOURCE_DIR}/tables/include -I${SOURCE_DIR}/kernels
           -I/usr/include/OpenEXR -I/usr/include/Imath)
 set(objects "")
-foreach(s table io_binary io_exr)
+foreach(s table io_binary io_metadata io_exr)
   step(${CLANGXX} ${flags} -fsanitize=fuzzer-no-link -c ${src}/${s}.cpp -o ${WORK_DIR}/obj/${s}.o)
   list(APPEND objects ${WORK_DIR}/obj/${s}.o)
 endforeach()
@@ -29,6 +29,10 @@ file(COPY ${WORK_DIR}/tables/airlight_F.slut DESTINATION ${WORK_DIR}/corpus_bina
 file(COPY ${WORK_DIR}/tables/airlight_F.exr DESTINATION ${WORK_DIR}/corpus_exr)
 file(GLOB known "${SOURCE_DIR}/tests/fuzz/known/*")
 file(COPY ${known} DESTINATION ${WORK_DIR}/corpus_exr)
+# Files of the version-1.1 EXR mapping (double attributes, semantic channel names), which
+# the reader still reads: its older branch is fuzzed too.
+file(GLOB exr_v1 "${SOURCE_DIR}/tests/data/exr-format-1.1/*.exr")
+file(COPY ${exr_v1} DESTINATION ${WORK_DIR}/corpus_exr)
 
 math(EXPR half "(${SECONDS} + 1) / 2")
 foreach(format binary exr)

@@ -4,6 +4,7 @@
 //   binary  little-endian, checksummed, no dependency but this library; f16/f32/f64;
 //   EXR     OpenEXR single-part scanline image (slices of 3-D/4-D tables stacked into
 //           a vertical atlas), metadata as `scatterlut.*` attributes; f16/f32 only.
+// A third, KTX 2.0, is written for engines (GPU textures) but not read back.
 // Loaders distrust their input: every length is checked against the bytes present
 // before anything is allocated, and every failure is a LoadError naming the file.
 // Writers are atomic (temp file in the target directory, fsync, rename) and
@@ -59,6 +60,17 @@ std::vector<uint8_t> encode_binary(const Table &table);
 Table decode_binary(const uint8_t *data, size_t size, const std::string &name_for_messages);
 
 // --- OpenEXR ---------------------------------------------------------------------------
+// EXR mapping version written by encode_exr (docs/FORMAT.md §4). 2.0 names the value
+// channels as engine loaders expect (Y, or R, G, B, A) and stores every real number as a
+// decimal string attribute; decode_exr reads 2.x and the older 1.x files (semantic
+// channel names, double attributes). The binary format keeps its own version
+// (kFormatMajor.kFormatMinor).
+inline constexpr uint32_t kExrFormatMajor = 2;
+inline constexpr uint32_t kExrFormatMinor = 0;
+// The EXR channel that holds table channel `index` of a table with `count` channels in a
+// version-2 file: "Y" for a single channel; "R", "G", "B", "A" for 2 to 4 channels (in
+// table order); the table channel's own name beyond 4.
+std::string exr_channel_name(size_t count, size_t index, const std::string &table_channel_name);
 // True if this library was built with OpenEXR; otherwise the functions below throw
 // (LoadError for the readers, std::runtime_error for the writers).
 bool have_openexr();
@@ -67,6 +79,22 @@ Table load_exr(const std::string &path);
 void save_exr(const Table &table, const std::string &path);
 std::vector<uint8_t> encode_exr(const Table &table);
 Table decode_exr(const uint8_t *data, size_t size, const std::string &name_for_messages);
+
+// --- KTX 2.0 (docs/FORMAT.md §6) ---------------------------------------------------------
+// An uncompressed GPU texture: R16_SFLOAT / R32_SFLOAT (R…RGBA for 2 to 4 channels), one
+// mip level; a 1-D table is a 1-D texture, 2-D a 2-D texture, 3-D a 3-D texture, 4-D a 3-D
+// texture with axis 3 stacked along y (x = i0, y = i1 + c1·i3, z = i2). Metadata in the
+// key/value data as text (keys "scatterlut.*", version kKtx2FormatMajor.kKtx2FormatMinor).
+// Written only (no reader): std::invalid_argument for f64 storage, more than 4 channels or
+// 4 axes. Atomic and deterministic like the other writers.
+inline constexpr uint32_t kKtx2FormatMajor = 1;
+inline constexpr uint32_t kKtx2FormatMinor = 0;
+struct Ktx2Shape {
+    uint64_t width = 0, height = 0, depth = 0; // pixelWidth, pixelHeight (0: 1-D), pixelDepth (0: not 3-D)
+};
+Ktx2Shape ktx2_shape(const Table &table);
+void save_ktx2(const Table &table, const std::string &path);
+std::vector<uint8_t> encode_ktx2(const Table &table);
 
 // --- storage rounding --------------------------------------------------------------------
 // Largest relative error on the quantity (Linear: the stored value; Log: exp(stored))
@@ -133,6 +161,12 @@ void check_limits(const Table &table);
 std::vector<uint8_t> encode_payload(const Table &table);
 // "(i0, i1, …), channel 'name'" for the value at flat index i.
 std::string describe_value(const Table &table, size_t i);
+// The shortest decimal text that reads back as exactly x ("0.5", "1e-05", "-inf", "nan"),
+// locale-independent, for metadata stored as text (EXR 2.x attributes, KTX2 key/values).
+std::string decimal_text(double x);
+// Parses all of s as a decimal number (as decimal_text writes it; also "inf", "nan").
+// False if s is empty or holds anything else.
+bool parse_decimal_text(const std::string &s, double *out);
 } // namespace detail
 
 } // namespace scatterlut

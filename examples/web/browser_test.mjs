@@ -1,0 +1,144 @@
+// The web demo in headless Chromium against the C++ render of the same view:
+//   node examples/web/browser_test.mjs SCATTERLUT RENDER_FOG WORK_DIR [--chromium PATH]
+//        [--shaders DIR (the generated .essl snippets; default build/tables/shaders)] [--require]
+// generates the default tables (--format all) into WORK_DIR/tables, renders
+// WORK_DIR/table.png with render_fog (C++, the tables through scatterlut::tables), opens
+// the page (?test=1, render_fog's exposure) in Chromium with SwiftShader's WebGL2, reads
+// the frame back (WORK_DIR/browser.png) and requires PSNR >= 40 dB between the two
+// tone-mapped 8-bit images; then opens the interactive page and waits for its controls.
+// Without Chromium or the npm modules (npm ci in examples/web) it prints "skipped: ..."
+// and exits 77, or fails with --require.
+import { execFileSync } from 'node:child_process';
+import { existsSync, readFileSync, mkdirSync, writeFileSync } from 'node:fs';
+import { inflateSync, deflateSync } from 'node:zlib';
+import { join } from 'node:path';
+
+const args = process.argv.slice(2);
+const require = args.includes('--require');
+const opt = (name) => { const i = args.indexOf(name); return i >= 0 ? args[i + 1] : undefined; };
+const valued = ['--chromium', '--shaders'];
+const [scatterlut, renderFog, work] = args.filter((a, i) => !a.startsWith('--') && !(i > 0 && valued.includes(args[i - 1])));
+if (!work) {
+	console.error('usage: node browser_test.mjs SCATTERLUT RENDER_FOG WORK_DIR [--chromium PATH] [--shaders DIR] [--require]');
+	process.exit(2);
+}
+function skip(why) {
+	if (require) { console.error(`FAIL (required): ${why}`); process.exit(1); }
+	console.log(`skipped: ${why}`);
+	process.exit(77);
+}
+const chromium = opt('--chromium') ?? ['/usr/bin/chromium', '/usr/bin/chromium-browser'].find((p) => existsSync(p));
+if (!chromium || !existsSync(chromium)) skip('chromium not found (Debian: apt-get install chromium)');
+let puppeteer;
+try {
+	puppeteer = (await import('puppeteer-core')).default;
+	await import('three');
+} catch (e) {
+	skip(`npm modules missing (run \`npm ci\` in examples/web, or \`make test\`): ${e.message}`);
+}
+const { startServer } = await import('./serve.mjs');
+
+// Tables and the C++ picture.
+const tables = join(work, 'tables');
+mkdirSync(tables, { recursive: true });
+execFileSync(scatterlut, ['generate', '--format', 'all', '--out', tables], { stdio: 'ignore' });
+const out = execFileSync(renderFog, [join(tables, 'airlight_F.slut'), join(tables, 'near_light_E3.slut'), work]).toString();
+const exposure = Number(/^exposure (\S+)/m.exec(out)?.[1]);
+if (!Number.isFinite(exposure)) throw new Error(`render_fog printed no exposure:\n${out}`);
+
+// A PNG (8-bit RGB, the project's encoder) → rows top to bottom.
+function decodePng(bytes) {
+	let p = 8, width = 0, height = 0;
+	const idat = [];
+	while (p < bytes.length) {
+		const len = bytes.readUInt32BE(p), type = bytes.toString('latin1', p + 4, p + 8), data = bytes.subarray(p + 8, p + 8 + len);
+		if (type === 'IHDR') {
+			width = data.readUInt32BE(0); height = data.readUInt32BE(4);
+			if (data[8] !== 8 || data[9] !== 2 || data[12] !== 0) throw new Error('expected an 8-bit RGB non-interlaced PNG');
+		} else if (type === 'IDAT') idat.push(data);
+		p += 12 + len;
+	}
+	const raw = inflateSync(Buffer.concat(idat)), stride = width * 3, img = new Uint8Array(stride * height);
+	for (let y = 0; y < height; y++) {
+		const f = raw[y * (stride + 1)], row = raw.subarray(y * (stride + 1) + 1, (y + 1) * (stride + 1));
+		for (let x = 0; x < stride; x++) {
+			const a = x >= 3 ? img[y * stride + x - 3] : 0, b = y ? img[(y - 1) * stride + x] : 0;
+			const c = x >= 3 && y ? img[(y - 1) * stride + x - 3] : 0;
+			const pa = Math.abs(b - c), pb = Math.abs(a - c), pc = Math.abs(a + b - 2 * c);
+			const pred = [0, a, b, (a + b) >> 1, pa <= pb && pa <= pc ? a : pb <= pc ? b : c][f];
+			img[y * stride + x] = (row[x] + pred) & 255;
+		}
+	}
+	return { width, height, img };
+}
+const cpp = decodePng(readFileSync(join(work, 'table.png')));
+const t0 = Date.now();
+const phase = (what) => console.log(`[${((Date.now() - t0) / 1000).toFixed(1)} s] ${what}`);
+
+// The page in Chromium.
+const server = await startServer({ tables, shaders: opt('--shaders') });
+const browser = await puppeteer.launch({
+	executablePath: chromium, headless: true,
+	args: ['--headless=new', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox', '--disable-gpu-sandbox'],
+});
+let frame;
+try {
+	const page = await browser.newPage();
+	const logs = [];
+	page.on('console', (m) => logs.push(m.text()));
+	await page.goto(`http://127.0.0.1:${server.address().port}/?test=1&exposure=${exposure}`);
+	await page.waitForFunction('window.slutDone || window.slutError', { timeout: 240000 });
+	const error = await page.evaluate('window.slutError');
+	if (error) throw new Error(`page failed: ${error}\n${logs.join('\n')}`);
+	frame = await page.evaluate('window.slutFrame');
+	phase('fixed view rendered and read back');
+	// The interactive page (no test parameter) comes up with its controls and no error.
+	const live = await browser.newPage();
+	await live.goto(`http://127.0.0.1:${server.address().port}/`);
+	await live.waitForFunction("document.querySelector('.lil-gui') || window.slutError", { timeout: 240000 });
+	const liveError = await live.evaluate('window.slutError');
+	if (liveError) throw new Error(`interactive page failed: ${liveError}`);
+	phase('interactive page up');
+} finally {
+	await browser.close();
+	server.close();
+}
+
+// The browser's frame as WORK_DIR/browser.png (8-bit RGB, filter 0), to look at.
+function encodePng(width, height, rgb) {
+	const crcTable = Array.from({ length: 256 }, (_, n) => {
+		let c = n;
+		for (let k = 0; k < 8; k++) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
+		return c >>> 0;
+	});
+	const crc = (buf) => { let c = 0xffffffff; for (const x of buf) c = crcTable[(c ^ x) & 255] ^ (c >>> 8); return (c ^ 0xffffffff) >>> 0; };
+	const chunk = (type, data) => {
+		const out = Buffer.alloc(12 + data.length);
+		out.writeUInt32BE(data.length, 0);
+		out.write(type, 4, 'latin1');
+		data.copy(out, 8);
+		out.writeUInt32BE(crc(out.subarray(4, 8 + data.length)), 8 + data.length);
+		return out;
+	};
+	const ihdr = Buffer.alloc(13);
+	ihdr.writeUInt32BE(width, 0); ihdr.writeUInt32BE(height, 4); ihdr[8] = 8; ihdr[9] = 2;
+	const raw = Buffer.alloc((width * 3 + 1) * height);
+	for (let y = 0; y < height; y++) for (let x = 0; x < width * 3; x++) raw[y * (width * 3 + 1) + 1 + x] = rgb[y * width * 3 + x];
+	return Buffer.concat([Buffer.from([137, 80, 78, 71, 13, 10, 26, 10]), chunk('IHDR', ihdr), chunk('IDAT', deflateSync(raw)), chunk('IEND', Buffer.alloc(0))]);
+}
+writeFileSync(join(work, 'browser.png'), encodePng(cpp.width, cpp.height, frame));
+
+if (frame.length !== cpp.img.length) throw new Error(`frame has ${frame.length} values, the C++ picture ${cpp.img.length}`);
+let mse = 0, max = 0;
+for (let k = 0; k < frame.length; k++) {
+	const d = frame[k] - cpp.img[k];
+	mse += d * d;
+	max = Math.max(max, Math.abs(d));
+}
+mse /= frame.length;
+const psnr = mse > 0 ? 10 * Math.log10((255 * 255) / mse) : Infinity;
+console.log(`browser (Chromium, SwiftShader WebGL2) vs render_fog: ${cpp.width}x${cpp.height}, PSNR ${psnr.toFixed(2)} dB, max |diff| ${max} levels, exposure ${exposure}`);
+if (!(psnr >= 40)) {
+	console.error('FAIL: PSNR below 40 dB');
+	process.exit(1);
+}

@@ -1,0 +1,226 @@
+// The fog street of examples/render_fog.cpp in the browser: three.js (npm), the default
+// tables as KTX2 textures (airlight_F: 2-D, near_light_E3: 3-D), and the WebGL2 sampling
+// snippets (scatterlut_airlight.essl, scatterlut_nearlight.essl) in one full-screen
+// fragment shader: per pixel, the airlight of every lamp along the view ray and, where the
+// ray meets the wax slab, the near light through its face; Reinhard + sRGB as render_fog.
+//
+// URL parameters: exposure=X (render_fog prints it; default: a night-scene value),
+// test=1 (fixed view, no controls; sets window.slutDone when the frame is drawn).
+import * as THREE from 'three';
+import { KTX2Loader } from 'three/addons/loaders/KTX2Loader.js';
+import { read } from 'three/addons/libs/ktx-parse.module.js';
+import { metadataFromKtx2KeyValue } from './slut.mjs';
+
+const W = 480, H = 270; // render_fog's image
+const params = new URLSearchParams(location.search);
+const testMode = params.has('test');
+
+// The scene of render_fog.cpp (metres, 1/m; y up, camera looking down -z).
+const scene = {
+	eye: new THREE.Vector3(0, 1.7, 0), target: new THREE.Vector3(0, 2.4, -30), fovYDeg: 50,
+	fogSigmaS: 0.04, fogSigmaA: 0.01, slabSigmaS: 5.0, slabSigmaA: 0.2,
+	lights: [ // position (m), I0 (W/sr), colour
+		[-3.5, 5.0, -12.0, 300, 1.0, 0.72, 0.38], [3.8, 5.0, -26.0, 300, 1.0, 0.72, 0.38],
+		[-3.8, 5.0, -45.0, 300, 1.0, 0.72, 0.38], [3.8, 5.0, -70.0, 300, 1.0, 0.72, 0.38],
+		[2.0, 1.2, -8.6, 40, 0.85, 0.9, 1.0], [-2.0, 4.0, 3.0, 200, 1.0, 0.72, 0.38],
+	],
+	exposure: Number(params.get('exposure') ?? 2.0),
+};
+
+async function text(url) {
+	const r = await fetch(url);
+	if (!r.ok) throw new Error(`${url}: HTTP ${r.status}`);
+	return r.text();
+}
+
+// A table: its texture (KTX2Loader) and its metadata (ktx-parse key/value data).
+async function loadTable(loader, url) {
+	const r = await fetch(url);
+	if (!r.ok) throw new Error(`${url}: HTTP ${r.status} (generate the tables with --format all)`);
+	const bytes = await r.arrayBuffer();
+	const meta = metadataFromKtx2KeyValue(read(new Uint8Array(bytes)).keyValue);
+	const texture = await new Promise((ok, no) => loader.parse(bytes, ok, no));
+	texture.minFilter = texture.magFilter = THREE.NearestFilter; // texelFetch path: no float filtering needed
+	texture.needsUpdate = true;
+	return { texture, meta };
+}
+
+const axisUniform = (a) => new THREE.Vector4(a.min, a.max, a.scale, a.count);
+
+function fragmentShader(airlightSnippet, nearSnippet) {
+	return airlightSnippet + nearSnippet + /* glsl */ `
+uniform sampler2D airlight_table;
+uniform sampler3D near_table;
+uniform vec4 air_u, air_w;                 // min, max, scale, count of the airlight axes u, w
+uniform vec4 near_T, near_g, near_r;       // of the E3 axes T, g, r
+uniform ivec3 near_warps;
+uniform vec3 eye, fwd, right, up;
+uniform float tan_half_fov, aspect, exposure;
+uniform vec2 fog_sigma, slab_sigma;         // (sigma_s, sigma_a) in 1/m
+uniform vec4 lights[6];                     // xyz position (m), w I0 (W/sr)
+uniform vec3 light_colors[6];
+uniform vec2 resolution;
+out vec4 colour;
+
+const float kWallZ = -90.0, kWallH = 14.0;
+const float kSlabZ = -9.0, kSlabX0 = 1.2, kSlabX1 = 3.2, kSlabH = 2.0;
+const vec3 kSlabColor = vec3(1.0, 0.5, 0.25);
+
+float tone(float x) { // Reinhard after exposure, then the sRGB curve (render_fog's tone_map)
+	float c = isinf(x) ? 1.0 : x / (1.0 + x);
+	return c <= 0.0031308 ? 12.92 * c : 1.055 * pow(c, 1.0 / 2.4) - 0.055;
+}
+
+void main() {
+	// Pixel (i, j) of render_fog, j counted from the top.
+	float i = gl_FragCoord.x - 0.5, j = resolution.y - gl_FragCoord.y - 0.5;
+	float px = (2.0 * (i + 0.5) / resolution.x - 1.0) * tan_half_fov * aspect;
+	float py = (1.0 - 2.0 * (j + 0.5) / resolution.y) * tan_half_fov;
+	vec3 d = normalize(fwd + px * right + py * up);
+	float s = slut_inf();
+	bool slab = false;
+	if (d.y < 0.0) s = min(s, -eye.y / d.y);
+	if (d.z < 0.0) {
+		float t = (kWallZ - eye.z) / d.z;
+		vec3 p = eye + t * d;
+		if (t < s && p.y <= kWallH) s = t;
+		t = (kSlabZ - eye.z) / d.z;
+		p = eye + t * d;
+		if (t < s && p.x >= kSlabX0 && p.x <= kSlabX1 && p.y >= 0.0 && p.y <= kSlabH) { s = t; slab = true; }
+	}
+	SlutAirlightTable air = slut_airlight_table(air_u.y, air_u.z, int(air_u.w), air_w.x, int(air_w.w));
+	SlutNearLightTable e3 = slut_near_light_table_e3(
+		slut_axis_make(near_T.x, near_T.y, near_T.z, near_warps.x, int(near_T.w)),
+		slut_axis_make(near_g.x, near_g.y, near_g.z, near_warps.y, int(near_g.w)),
+		slut_axis_make(near_r.x, near_r.y, near_r.z, near_warps.z, int(near_r.w)));
+	vec3 L = vec3(0.0);
+	float fog_t = fog_sigma.x + fog_sigma.y;
+	for (int k = 0; k < 6; ++k) {
+		L += slut_airlight_radiance_points(airlight_table, air, eye, d, lights[k].xyz, s, fog_sigma.x, fog_sigma.y,
+		                                   lights[k].w) * light_colors[k];
+	}
+	if (slab) {
+		vec3 p = eye + s * d;
+		for (int k = 0; k < 6; ++k) {
+			vec3 rel = lights[k].xyz - p;
+			float att = exp(-fog_t * (length(rel) + s));
+			float Ln = slut_near_light_radiance(near_table, e3, slab_sigma.x, slab_sigma.y, lights[k].w,
+			                                    vec3(0.0, 0.0, 1.0), -d, rel, slut_inf(), 1.0, false) * att;
+			L += Ln * light_colors[k] * kSlabColor;
+		}
+	}
+	colour = vec4(tone(L.r * exposure), tone(L.g * exposure), tone(L.b * exposure), 1.0);
+}
+`;
+}
+
+async function main() {
+	const canvas = document.querySelector('canvas');
+	canvas.width = W;
+	canvas.height = H;
+	const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, preserveDrawingBuffer: true });
+	renderer.setPixelRatio(1);
+	renderer.setSize(W, H, false);
+	const loader = new KTX2Loader().detectSupport(renderer);
+	const [air, near, airSnippet, nearSnippet] = await Promise.all([
+		loadTable(loader, 'tables/airlight_F.ktx2'), loadTable(loader, 'tables/near_light_E3.ktx2'),
+		text('shaders/scatterlut_airlight.essl'), text('shaders/scatterlut_nearlight.essl'),
+	]);
+	if (air.meta.kind !== 'airlight_F' || near.meta.kind !== 'near_light_E3')
+		throw new Error(`unexpected tables ${air.meta.kind}, ${near.meta.kind}`);
+	// slut_airlight_table() takes the default airlight axes: u log1p from 0, w asinh_cot to pi/2.
+	if (air.meta.axes[0].warpName !== 'log1p' || air.meta.axes[1].warpName !== 'asinh_cot')
+		throw new Error('airlight_F: expected axes u (log1p) and w (asinh_cot)');
+	const [au, aw] = air.meta.axes, [nT, ng, nr] = near.meta.axes;
+	const uniforms = {
+		airlight_table: { value: air.texture }, near_table: { value: near.texture },
+		air_u: { value: axisUniform(au) }, air_w: { value: axisUniform(aw) },
+		near_T: { value: axisUniform(nT) }, near_g: { value: axisUniform(ng) }, near_r: { value: axisUniform(nr) },
+		near_warps: { value: [nT.warp, ng.warp, nr.warp] },
+		eye: { value: new THREE.Vector3() }, fwd: { value: new THREE.Vector3() },
+		right: { value: new THREE.Vector3() }, up: { value: new THREE.Vector3() },
+		tan_half_fov: { value: 0 }, aspect: { value: W / H }, exposure: { value: scene.exposure },
+		fog_sigma: { value: new THREE.Vector2() }, slab_sigma: { value: new THREE.Vector2() },
+		lights: { value: scene.lights.map(() => new THREE.Vector4()) },
+		light_colors: { value: scene.lights.map(() => new THREE.Vector3()) },
+		resolution: { value: new THREE.Vector2(W, H) },
+	};
+	// glslVersion GLSL3: three.js puts "#version 300 es" first; the snippets declare highp.
+	const material = new THREE.RawShaderMaterial({
+		glslVersion: THREE.GLSL3, uniforms,
+		vertexShader: 'in vec3 position;\nvoid main() { gl_Position = vec4(position.xy, 0.0, 1.0); }\n',
+		fragmentShader: fragmentShader(airSnippet, nearSnippet),
+	});
+	const quad = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), material);
+	const root = new THREE.Scene();
+	root.add(quad);
+	const camera = new THREE.Camera();
+
+	function update() {
+		const fwd = scene.target.clone().sub(scene.eye).normalize();
+		const right = fwd.clone().cross(new THREE.Vector3(0, 1, 0)).normalize();
+		uniforms.eye.value.copy(scene.eye);
+		uniforms.fwd.value.copy(fwd);
+		uniforms.right.value.copy(right);
+		uniforms.up.value.copy(right.clone().cross(fwd));
+		uniforms.tan_half_fov.value = Math.tan((scene.fovYDeg * Math.PI) / 360);
+		uniforms.fog_sigma.value.set(scene.fogSigmaS, scene.fogSigmaA);
+		uniforms.slab_sigma.value.set(scene.slabSigmaS, scene.slabSigmaA);
+		uniforms.exposure.value = scene.exposure;
+		scene.lights.forEach((l, k) => {
+			uniforms.lights.value[k].set(l[0], l[1], l[2], l[3]);
+			uniforms.light_colors.value[k].set(l[4], l[5], l[6]);
+		});
+		renderer.render(root, camera);
+	}
+	update();
+
+	if (testMode) {
+		// The frame as 8-bit RGB, rows top to bottom (render_fog's order).
+		const gl = renderer.getContext();
+		const rgba = new Uint8Array(W * H * 4);
+		gl.readPixels(0, 0, W, H, gl.RGBA, gl.UNSIGNED_BYTE, rgba);
+		const rgb = new Array(W * H * 3);
+		for (let y = 0; y < H; y++)
+			for (let x = 0; x < W; x++)
+				for (let c = 0; c < 3; c++) rgb[(y * W + x) * 3 + c] = rgba[((H - 1 - y) * W + x) * 4 + c];
+		window.slutFrame = rgb;
+		window.slutDone = true;
+		return;
+	}
+
+	// Interactive: camera yaw/pitch, the small lamp's position, the media's sigma.
+	const { GUI } = await import('three/addons/libs/lil-gui.module.min.js');
+	const gui = new GUI();
+	const view = { yawDeg: 0, pitchDeg: 1.3, eyeX: 0, eyeZ: 0 };
+	const aim = () => {
+		scene.eye.set(view.eyeX, 1.7, view.eyeZ);
+		const yaw = (view.yawDeg * Math.PI) / 180, pitch = (view.pitchDeg * Math.PI) / 180;
+		scene.target.set(scene.eye.x - 30 * Math.sin(yaw), scene.eye.y + 30 * Math.tan(pitch), scene.eye.z - 30 * Math.cos(yaw));
+		update();
+	};
+	const cam = gui.addFolder('camera');
+	cam.add(view, 'yawDeg', -60, 60).onChange(aim);
+	cam.add(view, 'pitchDeg', -20, 30).onChange(aim);
+	cam.add(view, 'eyeX', -4, 4).onChange(aim);
+	cam.add(view, 'eyeZ', -8, 5).onChange(aim);
+	const lamp = { x: 2.0, y: 1.2, z: -8.6, I0: 40 };
+	const lampFolder = gui.addFolder('small lamp (in front of the slab)');
+	for (const [k, lo, hi] of [['x', 0, 4], ['y', 0.2, 3], ['z', -8.95, -6], ['I0', 0, 200]])
+		lampFolder.add(lamp, k, lo, hi).onChange(() => {
+			scene.lights[4] = [lamp.x, lamp.y, lamp.z, lamp.I0, 0.85, 0.9, 1.0];
+			update();
+		});
+	const media = gui.addFolder('media (1/m)');
+	media.add(scene, 'fogSigmaS', 0, 0.2).name('fog sigma_s').onChange(update);
+	media.add(scene, 'fogSigmaA', 0, 0.1).name('fog sigma_a').onChange(update);
+	media.add(scene, 'slabSigmaS', 0.5, 20).name('slab sigma_s').onChange(update);
+	media.add(scene, 'slabSigmaA', 0, 2).name('slab sigma_a').onChange(update);
+	gui.add(scene, 'exposure', 0.01, 50).onChange(update);
+}
+
+main().catch((e) => {
+	console.error(e);
+	window.slutError = String(e && e.stack || e);
+	document.body.insertAdjacentHTML('beforeend', `<pre style="color:#f66">${String(e)}</pre>`);
+});
