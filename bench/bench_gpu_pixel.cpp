@@ -23,6 +23,9 @@
 // on the sphere, fog σ_s log-uniform in [0.004, 0.4] per m, σ_a = σ_s/20, I0 = 100 W/sr.
 //
 // Usage: scatterlut_gpu_bench [--width N] [--height N] [--frames N] [--rounds N] [--stride N]
+//                             [--compare-snippet FILE]
+// --compare-snippet adds a method "compare": FILE (another version of scatterlut_airlight.glsl,
+// e.g. one generated before a change) the way `snippet` runs, for an A/B in the same rounds.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -55,6 +58,7 @@ constexpr double kFUMax = 10.0;
 
 struct Options {
     int width = 1920, height = 1080, frames = 5, rounds = 7, stride = 4;
+    std::string compare_snippet; // another scatterlut_airlight.glsl, run as method "compare"
 };
 
 bool parse_int(const char *text, int lo, int hi, int *out) {
@@ -67,7 +71,8 @@ bool parse_int(const char *text, int lo, int hi, int *out) {
 
 int usage_error(const std::string &what) {
     std::fprintf(stderr, "scatterlut_gpu_bench: %s\nusage: scatterlut_gpu_bench [--width 16..8192] "
-                         "[--height 16..8192] [--frames 1..1000] [--rounds 1..1000] [--stride 1..1000000]\n",
+                         "[--height 16..8192] [--frames 1..1000] [--rounds 1..1000] [--stride 1..1000000] "
+                         "[--compare-snippet FILE]\n",
                  what.c_str());
     return 2;
 }
@@ -239,6 +244,11 @@ int main(int argc, char **argv) {
     Options opt;
     for (int k = 1; k < argc; ++k) {
         const std::string a = argv[k];
+        if (a == "--compare-snippet") {
+            if (k + 1 >= argc) return usage_error("option " + a + " needs a file");
+            opt.compare_snippet = argv[++k];
+            continue;
+        }
         int *target = nullptr;
         int lo = 1, hi = 1000;
         if (a == "--width") target = &opt.width, lo = 16, hi = 8192;
@@ -251,6 +261,12 @@ int main(int argc, char **argv) {
         if (!parse_int(argv[++k], lo, hi, target))
             return usage_error("option " + a + ": expected an integer in [" + std::to_string(lo) + ", " +
                                std::to_string(hi) + "], got '" + argv[k] + "'");
+    }
+
+    std::string compare_text;
+    if (!opt.compare_snippet.empty()) {
+        compare_text = read_text(opt.compare_snippet);
+        if (compare_text.empty()) return usage_error("--compare-snippet: cannot read '" + opt.compare_snippet + "'");
     }
 
     gpu_harness::GpuContext &context = gpu_harness::gpu();
@@ -300,6 +316,9 @@ int main(int argc, char **argv) {
         {"sun2005", "Sun et al. 2005, 64² F table, two fetches", 0, f_texture},
         {"inputs", "reads the inputs only", 0, 0},
     };
+    if (!opt.compare_snippet.empty()) {
+        methods.insert(methods.begin() + 2, Method{"compare", opt.compare_snippet + ", texelFetch", 0, ln_gs_texture});
+    }
     for (Method &m : methods) {
         std::string fs = "#version 430\n";
         if (m.name == "snippet_hw") fs += "#define SLUT_AIRLIGHT_HARDWARE_FILTER\n";
@@ -307,7 +326,7 @@ int main(int argc, char **argv) {
         if (m.name == "closed") fs += kClosedFormGlsl + fragment_main("closed_form_attenuated(ss, sa, i0, dist, sg, cg, len)");
         else if (m.name == "sun2005") fs += kSunGlsl + fragment_main("sun2005(ss, sa, i0, dist, sg, cg, len)");
         else if (m.name == "inputs") fs += fragment_main("ss + sa + i0 + dist + sg + cg + len");
-        else fs += table_uniforms + snippet + fragment_main(snippet_call);
+        else fs += table_uniforms + (m.name == "compare" ? compare_text : snippet) + fragment_main(snippet_call);
         const std::string error = gpu_harness::build_program_stages(
             gl, {{GL_VERTEX_SHADER, kVertex}, {GL_FRAGMENT_SHADER, fs}}, &m.program);
         if (!error.empty()) {
