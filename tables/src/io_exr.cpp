@@ -38,7 +38,12 @@
 #include <ImfStringVectorAttribute.h>
 #include <ImfVersion.h>
 
+#include "io_text.hpp"
+
 namespace scatterlut {
+
+using detail::digits17;
+using detail::hex64;
 
 namespace {
 
@@ -90,12 +95,6 @@ private:
     size_t size_;
     size_t pos_ = 0;
 };
-
-std::string hex64(uint64_t v) {
-    char buf[19];
-    std::snprintf(buf, sizeof buf, "0x%016llx", static_cast<unsigned long long>(v));
-    return buf;
-}
 
 // Checksum of the scatterlut.* attributes except scatterlut.checksum.*, in the header's
 // (strcmp-sorted) order: for each, name, 0, type name, 0, u32 LE value size, value bytes
@@ -311,13 +310,6 @@ struct ExrReader {
     }
 };
 
-std::string fmt(double x) {
-    std::ostringstream s;
-    s.precision(17);
-    s << x;
-    return s.str();
-}
-
 Table decode_exr_header(ExrReader &r, const Imf::Header &h) {
     if (h.find(kPrefix + "format_major") == h.end())
         r.fail("is an OpenEXR image but not a scatterlut table (no attribute 'scatterlut.format_major')");
@@ -379,10 +371,10 @@ Table decode_exr_header(ExrReader &r, const Imf::Header &h) {
         if (a.map.count < 2)
             r.fail(label + ": count " + std::to_string(a.map.count) + " is invalid (need 2 <= count <= 2^31-1)");
         if (!std::isfinite(a.map.min) || !std::isfinite(a.map.max) || !std::isfinite(a.map.scale))
-            r.fail(label + ": range [" + fmt(a.map.min) + ", " + fmt(a.map.max) + "] / scale " + fmt(a.map.scale) +
+            r.fail(label + ": range [" + digits17(a.map.min) + ", " + digits17(a.map.max) + "] / scale " + digits17(a.map.scale) +
                    " is not finite");
         if (!(a.map.min < a.map.max))
-            r.fail(label + ": min " + fmt(a.map.min) + " must be less than max " + fmt(a.map.max));
+            r.fail(label + ": min " + digits17(a.map.min) + " must be less than max " + digits17(a.map.max));
         t.axes.push_back(a);
     }
     long double nodes = 1;
@@ -700,7 +692,7 @@ Table decode_exr(const uint8_t *data, size_t size, const std::string &name) {
                    "): the pixels are corrupt or were edited");
         for (size_t i = 0; i < n; ++i)
             if (!std::isfinite(t.values[i]))
-                r.fail("pixel value at " + detail::describe_value(t, i) + " is not finite (" + fmt(t.values[i]) + ")");
+                r.fail("pixel value at " + detail::describe_value(t, i) + " is not finite (" + digits17(t.values[i]) + ")");
         try {
             t.check_consistent();
         } catch (const std::invalid_argument &e) {
