@@ -10,5 +10,8 @@ set(SLUT_TABLE_IO_SOURCES
   io_dispatch        # load_table: the format by its magic number
   io_metadata        # metadata numbers as decimal text
   io_ktx2)           # KTX 2.0 encoder
-set(SLUT_TABLE_IO_EXR_SOURCE io_exr)                   # with OpenEXR
-set(SLUT_TABLE_IO_NO_EXR_SOURCE io_exr_unavailable)    # without: the EXR entry points say so
+set(SLUT_TABLE_IO_EXR_SOURCES   # with OpenEXR
+  io_exr_encode      # EXR encoder
+  io_exr_decode      # EXR decoder (distrusts its input)
+  io_exr_prescan)    # the raw header walk before OpenEXR reads it
+set(SLUT_TABLE_IO_NO_EXR_SOURCES io_exr_unavailable) # without: the EXR entry points say so

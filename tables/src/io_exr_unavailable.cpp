@@ -1,10 +1,10 @@
 // scatterlut runtime — the EXR entry points of a library built without OpenEXR
 // (SCATTERLUT_WITH_OPENEXR=OFF; tables/CMakeLists.txt compiles this file instead of
-// io_exr.cpp): they exist and say so.
+// io_exr_*.cpp): they exist and say so.
 #include "scatterlut/io.hpp"
 
 #ifdef SCATTERLUT_HAS_OPENEXR
-#error "io_exr_unavailable.cpp is the build without OpenEXR; with it, compile io_exr.cpp"
+#error "io_exr_unavailable.cpp is the build without OpenEXR; with it, compile io_exr_*.cpp"
 #endif
 
 namespace scatterlut {

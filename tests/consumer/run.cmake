@@ -27,7 +27,7 @@ endforeach()
 # Only the runtime library and its headers: nothing of the tools' internals (the PNG encoder,
 # the codecs' internal headers) is installed; the shared math headers are.
 file(GLOB_RECURSE internal "${moved}/*png_writer*" "${moved}/*scatterlut_png*" "${moved}/*io_text.hpp"
-     "${moved}/*io_binary_format.hpp")
+     "${moved}/*io_binary_format.hpp" "${moved}/*io_exr_format.hpp")
 if(internal)
   message(FATAL_ERROR "internal files are installed: ${internal}")
 endif()
