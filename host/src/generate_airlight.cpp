@@ -15,6 +15,7 @@
 
 extern "C" {
 #include "slut_airlight.h"
+#include "slut_gauss_legendre.h"
 }
 
 namespace scatterlut {
@@ -40,57 +41,32 @@ namespace {
 
 // ------------------------------------------------------------------ quadrature nodes of the sweep
 
-// m-point Gauss–Legendre rule on [−1, 1]: Newton's iteration on P_m from the
-// Tricomi-style initial guesses cos(π(k − ¼)/(m + ½)), converged to rounding
-// (Numerical Recipes §4.6, gauleg). Nodes ascending.
+// The m-point Gauss–Legendre rules of the panels (kernels/slut_gauss_legendre.h), every order
+// m ≤ kMaxOrder built once, and their error constants ln C_m. Nodes ascending.
 struct GaussLegendre {
     std::vector<double> x, w;
 };
 
-GaussLegendre gauss_legendre(int m) {
-    GaussLegendre r;
-    r.x.resize(static_cast<size_t>(m));
-    r.w.resize(static_cast<size_t>(m));
-    for (int k = 0; k < (m + 1) / 2; ++k) {
-        double z = std::cos(SLUT_PI * (k + 0.75) / (m + 0.5)), dp = 0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1, p1 = 0;
-            for (int n = 1; n <= m; ++n) { // P_n(z) = ((2n−1) z P_{n−1} − (n−1) P_{n−2})/n
-                const double p2 = p1;
-                p1 = p0;
-                p0 = ((2.0 * n - 1.0) * z * p1 - (n - 1.0) * p2) / n;
-            }
-            dp = m * (z * p0 - p1) / (z * z - 1.0); // P_m'(z)
-            const double dz = p0 / dp;
-            z -= dz;
-            if (std::fabs(dz) < 1e-17) break;
-        }
-        const double weight = 2.0 / ((1.0 - z * z) * dp * dp);
-        r.x[static_cast<size_t>(k)] = -z;
-        r.x[static_cast<size_t>(m - 1 - k)] = z;
-        r.w[static_cast<size_t>(k)] = r.w[static_cast<size_t>(m - 1 - k)] = weight;
-    }
-    return r;
-}
-
-constexpr int kMaxOrder = 16;
+constexpr int kMaxOrder = SLUT_GL_MAX_ORDER;
 
 const GaussLegendre &gauss_legendre_cached(int m) {
     static const std::vector<GaussLegendre> rules = [] {
         std::vector<GaussLegendre> v(kMaxOrder + 1);
-        for (int k = 1; k <= kMaxOrder; ++k) v[static_cast<size_t>(k)] = gauss_legendre(k);
+        for (int k = 1; k <= kMaxOrder; ++k) {
+            GaussLegendre &r = v[static_cast<size_t>(k)];
+            r.x.resize(static_cast<size_t>(k));
+            r.w.resize(static_cast<size_t>(k));
+            slut_gauss_legendre(k, r.x.data(), r.w.data());
+        }
         return v;
     }();
     return rules[static_cast<size_t>(m)];
 }
 
-// ln C_m, C_m = (m!)^4 / ((2m + 1) ((2m)!)^3): the m-point Gauss–Legendre error on a panel of
-// length h is h^{2m+1} C_m f^{(2m)}(ξ) (Abramowitz & Stegun 25.4.30).
 double log_gl_error_constant(int m) {
     static const std::vector<double> table = [] {
         std::vector<double> v(kMaxOrder + 1);
-        for (int k = 1; k <= kMaxOrder; ++k)
-            v[static_cast<size_t>(k)] = 4.0 * std::lgamma(k + 1.0) - std::log(2.0 * k + 1.0) - 3.0 * std::lgamma(2.0 * k + 1.0);
+        for (int k = 1; k <= kMaxOrder; ++k) v[static_cast<size_t>(k)] = slut_gauss_legendre_log_error_constant(k);
         return v;
     }();
     return table[static_cast<size_t>(m)];

@@ -28,7 +28,11 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "io_text.hpp"
+
 namespace scatterlut {
+
+using detail::hex64;
 
 namespace {
 
@@ -58,12 +62,6 @@ struct Out {
     void put_u64(size_t at, uint64_t v) { for (int k = 0; k < 8; ++k) b[at + k] = static_cast<uint8_t>(v >> (8 * k)); }
     void pad_to(size_t align) { while (b.size() % align) b.push_back(0); }
 };
-
-std::string hex64(uint64_t v) {
-    char buf[19];
-    std::snprintf(buf, sizeof buf, "0x%016llx", static_cast<unsigned long long>(v));
-    return buf;
-}
 
 } // namespace
 

@@ -24,6 +24,19 @@ foreach(snippet scatterlut_airlight.glsl scatterlut_airlight.hlsl scatterlut_nea
   endif()
 endforeach()
 
+# Only the runtime library and its headers: nothing of the tools' internals (the PNG encoder,
+# the codecs' internal headers) is installed; the shared math headers are.
+file(GLOB_RECURSE internal "${moved}/*png_writer*" "${moved}/*scatterlut_png*" "${moved}/*io_text.hpp"
+     "${moved}/*io_binary_format.hpp" "${moved}/*io_exr_format.hpp")
+if(internal)
+  message(FATAL_ERROR "internal files are installed: ${internal}")
+endif()
+foreach(header slut_compat.h slut_axes.h slut_gauss_legendre.h slut_airlight.h slut_nearlight.h)
+  if(NOT EXISTS "${moved}/include/scatterlut/kernels/${header}")
+    message(FATAL_ERROR "${header} is not installed in ${moved}/include/scatterlut/kernels")
+  endif()
+endforeach()
+
 # pkg-config from the moved prefix: the flags must name the moved prefix, never the old one.
 find_program(PKG_CONFIG pkg-config)
 if(NOT PKG_CONFIG)

@@ -14,7 +14,8 @@ set(flags -std=c++17 -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=u
           -DSCATTERLUT_HAS_OPENEXR=1 -I${SOURCE_DIR}/tables/include -I${SOURCE_DIR}/kernels
           -I/usr/include/OpenEXR -I/usr/include/Imath)
 set(objects "")
-foreach(s table io_binary io_metadata io_exr)
+include("${SOURCE_DIR}/tables/io_sources.cmake") # the codecs of the runtime library
+foreach(s table ${SLUT_TABLE_IO_SOURCES} ${SLUT_TABLE_IO_EXR_SOURCES})
   step(${CLANGXX} ${flags} -fsanitize=fuzzer-no-link -c ${src}/${s}.cpp -o ${WORK_DIR}/obj/${s}.o)
   list(APPEND objects ${WORK_DIR}/obj/${s}.o)
 endforeach()

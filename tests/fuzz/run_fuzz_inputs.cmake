@@ -16,7 +16,10 @@ set(flags -std=c++17 -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=u
           "-DTOML_ASSERT(expr)=((void)0)"
           -I${SOURCE_DIR}/tables/include -I${SOURCE_DIR}/kernels -I${SOURCE_DIR}/host/src)
 set(objects "")
-foreach(s tables/src/table tables/src/sampler tables/src/airlight tables/src/nearlight tables/src/io_binary
+include("${SOURCE_DIR}/tables/io_sources.cmake") # the codecs of the runtime library (built without OpenEXR here)
+set(slut_io_sources ${SLUT_TABLE_IO_SOURCES} ${SLUT_TABLE_IO_NO_EXR_SOURCES})
+list(TRANSFORM slut_io_sources PREPEND tables/src/)
+foreach(s tables/src/table tables/src/sampler tables/src/airlight tables/src/nearlight ${slut_io_sources}
           host/src/eval host/src/json_guard host/src/scene)
   get_filename_component(name ${s} NAME)
   step(${CLANGXX} ${flags} -fsanitize=fuzzer-no-link -c ${SOURCE_DIR}/${s}.cpp -o ${WORK_DIR}/obj/${name}.o)
