@@ -556,3 +556,44 @@ TEST(AnisotropicReferences, ExactMatchesMpmath) {
                 n_air, worst_air, worst_boost, n_near, worst_near);
     RecordProperty("worst_rel_err", std::to_string(std::max(worst_air, worst_near)));
 }
+
+// Extreme inputs: never NaN, never negative, whatever the scale (lengths 1e-200 … 1e200,
+// coefficients 0 … 1e100, γ at and near 0 and π, |g| up to 0.999999).
+TEST(AnisotropicReferences, NeverNaNOrNegativeOnExtremeInputs) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    auto scale = [&](double lo, double hi) { return std::exp(std::log(lo) + (std::log(hi) - std::log(lo)) * U(rng)); };
+    const double gs[] = {-0.999999, -0.99, -0.3, 0.5, 0.95, 0.999999};
+    int finite = 0;
+    for (int i = 0; i < 3000; ++i) {
+        const double g = gs[i % 6];
+        const double D = scale(1e-200, 1e200);
+        double gamma = kPi * U(rng);
+        if (i % 5 == 0) gamma = (i % 10 == 0) ? 0.0 : kPi;
+        if (i % 5 == 1) gamma = scale(1e-300, 1e-3);
+        if (i % 5 == 2) gamma = kPi - scale(1e-16, 1e-3);
+        const double s = (i % 4 == 0) ? HUGE_VAL : D * scale(1e-12, 1e12);
+        const double ss = (i % 9 == 0) ? 0.0 : scale(1e-100, 1e100) / D, sa = (i % 3 == 0) ? 0.0 : scale(1e-100, 1e100) / D;
+        const double L = scatterlut::airlight_radiance_exact(air_query(ss, sa, scale(1e-10, 1e10), D, gamma, s), g);
+        ASSERT_FALSE(std::isnan(L)) << "g " << g << " D " << D << " gamma " << gamma << " s " << s << " ss " << ss << " sa " << sa;
+        ASSERT_GE(L, 0.0);
+        finite += std::isfinite(L);
+
+        scatterlut::NearLightQuery q;
+        q.sigma_s_per_m = ss;
+        q.sigma_a_per_m = sa;
+        q.intensity_W_per_sr = 1;
+        const double el = 0.01 + 1.5 * U(rng);
+        q.eye_dir[0] = std::cos(el);
+        q.eye_dir[2] = std::sin(el);
+        const double az = 2 * kPi * U(rng), inc = (i % 7 == 0) ? 0.0 : 1.5 * U(rng);
+        q.light_rel_m[0] = D * std::cos(az) * std::cos(inc);
+        q.light_rel_m[1] = D * std::sin(az) * std::cos(inc);
+        q.light_rel_m[2] = D * std::sin(inc);
+        q.length_m = s;
+        const double N = scatterlut::near_light_radiance_exact(q, g);
+        ASSERT_FALSE(std::isnan(N)) << "g " << g << " D " << D << " s " << s << " ss " << ss << " sa " << sa;
+        ASSERT_GE(N, 0.0);
+    }
+    EXPECT_GT(finite, 2000);
+}
