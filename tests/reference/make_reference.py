@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """30-digit reference values for scatterlut's tests (tests/reference/README.md).
 
-    python3 tests/reference/make_reference.py            # writes F_ref.json, N_ref.json, physical_ref.json
+    python3 tests/reference/make_reference.py            # writes F_ref.json, N_ref.json, physical_ref.json, hg_ref.json
     python3 tests/reference/make_reference.py --check    # recomputes a subset, compares with the files
 
 Every value is an integral computed with mpmath by adaptive tanh-sinh quadrature on panels
@@ -420,6 +420,159 @@ def near_light_case(sigma_s, sigma_a, intensity, normal, eye_dir, light_pos, len
 
 
 # --------------------------------------------------------------------------------------------
+# The same radiance with a Henyey-Greenstein phase function (docs/PHYSICS.md 1.4):
+#   p_g(theta) = (1 - g^2) / (4 pi (1 + g^2 - 2 g cos theta)^{3/2}),
+# theta between the light's propagation direction at the point (light -> point) and the
+# direction from the point to the viewer; g > 0 forward.
+
+def hg_psi(g, cos_theta):
+    """4 pi p_g(theta)."""
+    g = mpf(g)
+    den = 1 + g * g - 2 * g * cos_theta
+    return (1 - g) * (1 + g) / (den * mpmath.sqrt(den))
+
+
+def hg_airlight_integral(g, sigma_t, prefactor, D, cos_g, sin_g, s, method="ts", estimate=None):
+    """prefactor * int_0^s psi_g(theta(x)) e^{-sigma_t (x + d)} / d^2 dx, cos theta = (D cos gamma - x)/d;
+    the panels of airlight_integral (the phase's complex singularities, at x - D cos gamma =
+    +-i D sin gamma (1 + g^2)/(1 - g^2), lie farther from the ray than those of 1/d^2)."""
+    sigma_t = mpf(sigma_t)
+    xc, b = D * cos_g, D * sin_g
+
+    def f(x):
+        d2 = (x - xc) ** 2 + b * b
+        d = mpmath.sqrt(d2)
+        return hg_psi(g, (xc - x) / d) * mpmath.exp(-sigma_t * (x + d)) / d2
+    peak = xc if xc > 0 else None
+    length = INF if s == INF else mpf(s)
+    width = b
+    if peak is not None and length != INF and peak > length:
+        width = max(b, peak - length)
+    if peak is not None and width == 0:
+        raise ReferenceError("airlight: the view ray runs through the light")
+    scales = [D, b]
+    if sigma_t > 0:
+        scales.append(1 / sigma_t)
+    far = max(D, 64 / sigma_t if sigma_t > 0 else D) * 4
+    if peak is not None:
+        far = max(far, peak + 64 * width)
+    if method == "ts":
+        pts = panels(length, scales, far, peak, width if peak is not None else None, ratio=2)
+        return prefactor * quad_ts(f, pts, "HG airlight integral")
+    if length == INF:
+        c = far
+        while mpmath.exp(-sigma_t * c) * hg_psi(g, -1 if g < 0 else 1) / ((c - xc) ** 2 + b * b) > mpf("1e-40") * estimate / prefactor:
+            c *= 2
+        end = c
+    else:
+        end = length
+    pts = panels(end, scales, end, peak, width if peak is not None else None, ratio=3)
+    return prefactor * quad_gl(f, pts, estimate / prefactor)
+
+
+def hg_airlight_xi(g, sigma_t, prefactor, D, gamma, s):
+    """The third route, through Sun et al. 2005's substitution, in which the scattering angle
+    is 2 xi: prefactor (2/h) e^{-sigma_t D cos gamma} int_{gamma/2}^{v1} psi_g(2 xi)
+    e^{-u tan xi} dxi, u = sigma_t h, h = D sin gamma, v1 = pi/4 + atan((s - D cos gamma)/h)/2."""
+    D, gm = mpf(D), mpf(gamma)
+    h = D * mpmath.sin(gm)
+    u = mpf(sigma_t) * h
+    v1 = mp.pi / 2 if s == INF else mp.pi / 4 + mpmath.atan((mpf(s) - D * mpmath.cos(gm)) / h) / 2
+    v2 = gm / 2
+    off = mpf(sigma_t) * D * mpmath.cos(gm)
+
+    def f(xi):
+        return hg_psi(g, mpmath.cos(2 * xi)) * mpmath.exp(-off - u * mpmath.tan(xi))
+    # panels: a geometric ladder towards pi/2 (the e^{-u tan xi} layer) and away from the ends
+    pts = set([v2, v1])
+    for k in range(1, 200):
+        x = v1 - (v1 - v2) / mpf(2) ** k
+        if x <= v2 or (v1 - x) < mpf(10) ** -40:
+            break
+        pts.add(x)
+    for k in range(1, 60):
+        x = v2 + (v1 - v2) / mpf(2) ** k
+        if x - v2 < mpf(10) ** -40:
+            break
+        pts.add(x)
+    return prefactor * 2 / h * quad_ts(f, sorted(pts), "HG airlight in xi")
+
+
+def hg_airlight_case(phase_g, sigma_s, sigma_a, intensity, distance, gamma, length):
+    """hg_airlight_integral by tanh-sinh and by Gauss-Legendre, and through the xi form (theta = 2 xi)."""
+    ss, st = mpf(sigma_s), mpf(sigma_s) + mpf(sigma_a)
+    D, gm = mpf(distance), mpf(gamma)
+    pre = ss / (4 * mp.pi) * mpf(intensity)
+    L = hg_airlight_integral(phase_g, st, pre, D, mpmath.cos(gm), mpmath.sin(gm), length, "ts")
+    L2 = hg_airlight_integral(phase_g, st, pre, D, mpmath.cos(gm), mpmath.sin(gm), length, "gl", L)
+    what = "hg_airlight(%r, %r, %r, %r, %r, %r, %r)" % (phase_g, sigma_s, sigma_a, intensity, distance, gamma, length)
+    agree(what, L, L2)
+    if gm > 0 and gm < mp.pi:
+        agree(what + " vs the xi form (theta = 2 xi)", hg_airlight_xi(phase_g, st, pre, D, gamma, length), L)
+    return {"quantity": "airlight", "phase_g": phase_g, "sigma_s": sigma_s, "sigma_a": sigma_a, "intensity": intensity,
+            "distance": distance, "gamma": gamma, "length": length, "L": L}
+
+
+def hg_near_light_case(phase_g, sigma_s, sigma_a, intensity, normal, eye_dir, light_pos, length):
+    """near_light_case with the phase: cos theta(x) = -(x + e.l)/d(x) (the light propagates along
+    P - l = -(x e + l), the viewer lies along +e). Second route Gauss-Legendre on other panels;
+    for a light on the plane (r = 0) also the anisotropic airlight with D = |l|,
+    cos gamma = -e.l/|l|."""
+    n, e = unit(normal), unit(eye_dir)
+    l = [mpf(x) for x in light_pos]
+    ss, st = mpf(sigma_s), mpf(sigma_s) + mpf(sigma_a)
+    mu_e, hgt = dot(n, e), dot(n, l)
+    what = "hg_near_light(%r, %r, %r, %r, %r, %r, %r, %r)" % (phase_g, sigma_s, sigma_a, intensity, normal, eye_dir,
+                                                              light_pos, length)
+    if not mu_e > 0:
+        raise ReferenceError(what + ": the viewer is below the surface")
+    base = {"quantity": "near_light", "phase_g": phase_g, "sigma_s": sigma_s, "sigma_a": sigma_a,
+            "intensity": intensity, "normal": list(normal), "eye_dir": list(eye_dir), "light_pos": list(light_pos),
+            "length": length}
+    if hgt < 0:
+        base["L"] = mpf(0)
+        return base
+    el = dot(e, l)
+    cross = [e[1] * l[2] - e[2] * l[1], e[2] * l[0] - e[0] * l[2], e[0] * l[1] - e[1] * l[0]]
+    b2 = dot(cross, cross)
+    dist = mpmath.sqrt(dot(l, l))
+    pre = ss / (4 * mp.pi) * mpf(intensity)
+
+    def f(x):
+        d2 = (x + el) ** 2 + b2
+        d = mpmath.sqrt(d2)
+        k = d * (x * mu_e) / (x * mu_e + hgt) if hgt > 0 else d
+        return hg_psi(phase_g, -(x + el) / d) * mpmath.exp(-st * (x + k)) / d2
+    peak = -el if el < 0 else None
+    width = mpmath.sqrt(b2)
+    Lm = INF if length == INF else mpf(length)
+    if peak is not None and Lm != INF and peak > Lm:
+        width = max(width, peak - Lm)
+    scales = [dist, width, 1 / st]
+    if hgt > 0:
+        scales += [hgt / mu_e, hgt / (st * dist * mu_e)]
+    far = max(dist, 64 / st) * 4
+    if peak is not None:
+        far = max(far, peak + 64 * width)
+    L = pre * quad_ts(f, panels(Lm, scales, far, peak, width, 2), what)
+    if Lm == INF:
+        c = far
+        while mpmath.exp(-st * c) * hg_psi(phase_g, -1 if phase_g < 0 else 1) / (st * (c - dist) ** 2) > mpf("1e-40") * L / pre:
+            c *= 2
+        end = c
+    else:
+        end = Lm
+    L2 = pre * quad_gl(f, panels(end, scales, end, peak, width, 3), L / pre)
+    agree(what, L, L2)
+    if hgt == 0:
+        cg = -el / dist
+        A = hg_airlight_integral(phase_g, st, pre, dist, cg, mpmath.sqrt((1 - cg) * (1 + cg)), length, "ts")
+        agree(what + " vs the anisotropic airlight (r = 0)", A, L)
+    base["L"] = L
+    return base
+
+
+# --------------------------------------------------------------------------------------------
 # Inputs. The corners are the hard edges of the tables' domains; the other points were drawn
 # at random once (log-uniform where the quantity varies over decades) and are fixed here.
 
@@ -714,6 +867,25 @@ NEAR_LIGHT_CASES = [
     (9.691564325926894, 19.268290791692518, 1.0, (0.0, 0.0, 1.0), (0.08795362182920068, 0.9713838772912838, 0.22062983330836716), (0.15657923732083967, -0.07102971376577873, 0.25007460521659514), 0.4844940349705861),
 ]
 
+# The anisotropic cases: every geometry at every asymmetry of HG_G (hg_ref.json).
+HG_G = [-0.9, -0.5, 0.0, 0.3, 0.8, 0.95, 0.99]
+HG_AIRLIGHT_GEOMETRIES = [
+    (0.05, 0.01, 100.0, 10.0, 0.001, 20.0),      # gamma = 1e-3: the forward glow beside the light
+    (0.2, 0.1, 5.0, 3.0, 3.141591653589793, 7.0),  # gamma = pi - 1e-6: the backward direction
+    (0.5, 0.0, 1.0, 4.0, 2.8415926535897933, 10.0),
+    (0.3, 0.1, 1.0, 2.0, 1.0, INF),                # an infinite ray
+    (1e-06, 0.0, 1.0, 5.0, 1.0, 30.0),             # almost clear
+    (3.0, 2.0, 1.0, 0.01, 2.0, 5.0),               # dense, light close by
+]
+HG_NEAR_LIGHT_GEOMETRIES = [
+    NEAR_LIGHT_CASES[0],                           # thick, grazing light
+    NEAR_LIGHT_CASES[1],                           # a slab seen from straight above the light
+    NEAR_LIGHT_EXTRA[0],                           # the light on the plane (r = 0: the airlight identity)
+    NEAR_LIGHT_EXTRA[2],                           # grazing view, thick
+]
+HG_AIRLIGHT_INPUTS = [(g,) + c for g in HG_G for c in HG_AIRLIGHT_GEOMETRIES]
+HG_NEAR_LIGHT_INPUTS = [(g,) + c for g in HG_G for c in HG_NEAR_LIGHT_GEOMETRIES]
+
 F_INPUTS = F_CORNERS + F_INTERIOR
 N_INPUTS = N_POINTS + N_EXTRA
 AIRLIGHT_INPUTS = AIRLIGHT_CASES + AIRLIGHT_EXTRA
@@ -741,14 +913,21 @@ CHECK_FIRST = [
     ("near_light", len(NEAR_LIGHT_CASES)),            # light on the plane
     ("F", len(F_CORNERS)),
     ("N", 9),
+    ("hg_airlight", HG_AIRLIGHT_INPUTS.index((0.99,) + HG_AIRLIGHT_GEOMETRIES[0])),   # forward peak beside the light
+    ("hg_airlight", HG_AIRLIGHT_INPUTS.index((-0.9,) + HG_AIRLIGHT_GEOMETRIES[1])),   # backward, gamma -> pi
+    ("hg_near_light", HG_NEAR_LIGHT_INPUTS.index((0.95,) + HG_NEAR_LIGHT_GEOMETRIES[2])),  # r = 0
 ]
+
+
+KINDS = ("F", "N", "airlight", "near_light", "hg_airlight", "hg_near_light")
 
 
 def check_order(n):
     """The first n (file, index) pairs: CHECK_FIRST, then the rest of each file spread evenly."""
     order = list(CHECK_FIRST)
-    sizes = {"F": len(F_INPUTS), "N": len(N_INPUTS), "airlight": len(AIRLIGHT_INPUTS), "near_light": len(NEAR_LIGHT_INPUTS)}
-    rest = [(k, i) for k in ("F", "N", "airlight", "near_light") for i in range(sizes[k]) if (k, i) not in order]
+    sizes = {"F": len(F_INPUTS), "N": len(N_INPUTS), "airlight": len(AIRLIGHT_INPUTS), "near_light": len(NEAR_LIGHT_INPUTS),
+             "hg_airlight": len(HG_AIRLIGHT_INPUTS), "hg_near_light": len(HG_NEAR_LIGHT_INPUTS)}
+    rest = [(k, i) for k in KINDS for i in range(sizes[k]) if (k, i) not in order]
     rest.sort(key=lambda ki: (ki[1] / sizes[ki[0]], ki[0]))
     return (order + rest)[:n]
 
@@ -794,6 +973,10 @@ PHYSICAL_CONVENTIONS = ("airlight: gamma = angle between view direction and dire
                         "medium below, eye_dir from entry point towards viewer, light_pos relative to entry point, "
                         "length = path inside ('inf' = thick), light below the plane gives 0; isotropic phase 1/(4 pi); "
                         "L in W/(m^2 sr) for intensity I0 in W/sr, sigma in 1/m, lengths in m")
+HG_CONVENTIONS = ("as physical_ref.json, with the Henyey-Greenstein phase p(theta) = (1 - g^2)/(4 pi (1 + g^2 - "
+                  "2 g cos theta)^{3/2}), g = phase_g (> 0 forward), theta between the light's propagation direction "
+                  "at the point (light -> point) and the direction from the point to the viewer: airlight cos theta = "
+                  "(D cos(gamma) - x)/d(x), near_light cos theta = -(x + eye_dir.light_pos)/d(x)")
 
 
 def compute(kind, i):
@@ -803,6 +986,10 @@ def compute(kind, i):
         return N_point(*N_INPUTS[i])
     if kind == "airlight":
         return airlight_case(*AIRLIGHT_INPUTS[i])
+    if kind == "hg_airlight":
+        return hg_airlight_case(*HG_AIRLIGHT_INPUTS[i])
+    if kind == "hg_near_light":
+        return hg_near_light_case(*HG_NEAR_LIGHT_INPUTS[i])
     return near_light_case(*NEAR_LIGHT_INPUTS[i])
 
 
@@ -813,7 +1000,8 @@ def record(kind, value):
 def generate_all(log):
     files = {}
     for kind, count in (("F", len(F_INPUTS)), ("N", len(N_INPUTS)), ("airlight", len(AIRLIGHT_INPUTS)),
-                        ("near_light", len(NEAR_LIGHT_INPUTS))):
+                        ("near_light", len(NEAR_LIGHT_INPUTS)), ("hg_airlight", len(HG_AIRLIGHT_INPUTS)),
+                        ("hg_near_light", len(HG_NEAR_LIGHT_INPUTS))):
         t0 = time.time()
         files[kind] = [record(kind, compute(kind, i)) for i in range(count)]
         log("%-10s %4d values  %6.1f s" % (kind, count, time.time() - t0))
@@ -821,6 +1009,7 @@ def generate_all(log):
         "F_ref.json": {"definition": F_DEFINITION, "points": files["F"]},
         "N_ref.json": {"definition": N_DEFINITION, "points": files["N"]},
         "physical_ref.json": {"conventions": PHYSICAL_CONVENTIONS, "cases": files["airlight"] + files["near_light"]},
+        "hg_ref.json": {"conventions": HG_CONVENTIONS, "cases": files["hg_airlight"] + files["hg_near_light"]},
     }
 
 
@@ -869,15 +1058,24 @@ def committed_entries(directory):
     phys = entries("physical_ref.json", "cases")
     air = [c for c in phys if c.get("quantity") == "airlight"]
     near = [c for c in phys if c.get("quantity") == "near_light"]
+    hg = entries("hg_ref.json", "cases")
+    hg_air = [c for c in hg if c.get("quantity") == "airlight"]
+    hg_near = [c for c in hg if c.get("quantity") == "near_light"]
     expected = {
         "F": [{"u": u, "v": v} for u, v in F_INPUTS],
         "N": [{"T": T, "g": g, "r": r, "S": json_number(S)} for T, g, r, S in N_INPUTS],
         "airlight": [dict(zip(("sigma_s", "sigma_a", "intensity", "distance", "gamma", "length"), c)) for c in AIRLIGHT_INPUTS],
         "near_light": [{"sigma_s": c[0], "sigma_a": c[1], "intensity": c[2], "normal": list(c[3]), "eye_dir": list(c[4]),
                         "light_pos": list(c[5]), "length": json_number(c[6])} for c in NEAR_LIGHT_INPUTS],
+        "hg_airlight": [dict(zip(("phase_g", "sigma_s", "sigma_a", "intensity", "distance", "gamma", "length"),
+                                 c[:6] + (json_number(c[6]),))) for c in HG_AIRLIGHT_INPUTS],
+        "hg_near_light": [{"phase_g": c[0], "sigma_s": c[1], "sigma_a": c[2], "intensity": c[3], "normal": list(c[4]),
+                           "eye_dir": list(c[5]), "light_pos": list(c[6]), "length": json_number(c[7])}
+                          for c in HG_NEAR_LIGHT_INPUTS],
     }
-    have = {"F": F, "N": N, "airlight": air, "near_light": near}
-    names = {"F": "F_ref.json", "N": "N_ref.json", "airlight": "physical_ref.json", "near_light": "physical_ref.json"}
+    have = {"F": F, "N": N, "airlight": air, "near_light": near, "hg_airlight": hg_air, "hg_near_light": hg_near}
+    names = {"F": "F_ref.json", "N": "N_ref.json", "airlight": "physical_ref.json", "near_light": "physical_ref.json",
+             "hg_airlight": "hg_ref.json", "hg_near_light": "hg_ref.json"}
     for kind, want in expected.items():
         got = have[kind]
         if len(got) != len(want):
@@ -926,7 +1124,8 @@ def main(argv):
                     help="--check: how many values to recompute (default %(default)s: the hard points)")
     ap.add_argument("--dir", default=HERE, help="where the JSON files are read and written (default: this script's directory)")
     args = ap.parse_args(argv)
-    total = len(F_INPUTS) + len(N_INPUTS) + len(AIRLIGHT_INPUTS) + len(NEAR_LIGHT_INPUTS)
+    total = len(F_INPUTS) + len(N_INPUTS) + len(AIRLIGHT_INPUTS) + len(NEAR_LIGHT_INPUTS) + len(HG_AIRLIGHT_INPUTS) + \
+        len(HG_NEAR_LIGHT_INPUTS)
     if not 1 <= args.points <= total:
         ap.error("--points: expected an integer in [1, %d], got %d" % (total, args.points))
     mp.dps = WORK_DPS

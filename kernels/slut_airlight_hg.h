@@ -1,0 +1,328 @@
+/* scatterlut — the airlight of Sun et al. 2005 with a Henyey–Greenstein phase, written once.
+ *
+ * Derivation and conventions: docs/PHYSICS.md §1.4. With the phase the airlight is
+ *
+ *   L = σ_s I0 ∫_0^s p_g(θ(x)) e^{−σ_t (x + d(x))} / d(x)² dx,
+ *   cos θ(x) = (D cos γ − x)/d(x)      (θ between the light's propagation direction at the
+ *                                        point and the direction from the point to the viewer)
+ *
+ * (γ, D, s, d(x) as in kernels/slut_airlight.h). In Sun's substitution the scattering angle
+ * is exactly θ = 2ξ, so the airlight keeps its 2-D form with
+ *
+ *   F_g(u, v) = ∫_0^v ψ_g(2ξ) e^{−u tan ξ} dξ,        ψ_g = 4π p_g (kernels/slut_phase.h)
+ *   G̃_g(u, w) = e^{u cot w} ∫_{π/2−w}^{π/2} ψ_g(2ξ) e^{−u tan ξ} dξ / w
+ *
+ * and L = σ_s/(4π)·I0·2e^{−σ_t D}/(D sin γ)·[w2 G̃_g(u, w2) − e^{−σ_t Δ} w1 G̃_g(u, w1)] with the
+ * u, w1, w2, Δ of the isotropic case. g = 0 gives ψ = 1 and today's F, G̃; every function
+ * here hands g = 0 to the isotropic one of kernels/slut_airlight.h, so that case is today's
+ * path, bit for bit.
+ *
+ * One integral serves them all. With t = tan ξ, dξ = dt/(1 + t²) and
+ *   ψ_g(2ξ)/(1 + t²) = (1 − g²)·√(1 + t²) / ((1 − g)² + (1 + g)² t²)^{3/2}
+ * (both terms of the denominator ≥ 0 for every g: no cancellation as |g| → 1), and after
+ * scaling t = λ(τ̂ + z) by λ = max(1, tan v) (so that nothing over- or underflows as v → π/2):
+ *
+ *   K_g(û, τ̂, ε̂, Z) = ∫_0^Z e^{−û z} k_g(τ̂ + z) dz,
+ *   k_g(T) = (1 − g²)·r / Q^{3/2},   r = √(ε̂² + T²),   Q = (1 − g)² ε̂² + (1 + g)² T²,
+ *
+ * with û = λu, τ̂ = tan v/λ, ε̂ = 1/λ (one of τ̂, ε̂ is 1). Then
+ *   w·G̃_g(u, w) = K_g(λu, τ̂, ε̂, ∞)/λ,    F_g(u, v) = K_g(u, 0, 1, tan v),
+ * and the bracket of the radiance (the segment's integral) is K_g over the segment (below).
+ * For g = 0, k_0(T) = 1/(ε̂² + T²): the isotropic integrand.
+ *
+ * Compiled as C++ by the runtime library and the tests; C99/OpenCL C compatible (no
+ * pointers to structs), double precision.
+ */
+#ifndef SLUT_AIRLIGHT_HG_H
+#define SLUT_AIRLIGHT_HG_H
+
+#include "slut_compat.h"
+#include "slut_phase.h"
+#include "slut_airlight.h" /* the isotropic functions g = 0 hands to; slut_gl16_x/w; slut_exp_expint */
+
+/* ------------------------------------------------------------ the scaled integrand */
+
+/* k_g(T) for T ≥ 0, ε̂ ∈ [0, 1], not both 0. Where T ≥ ε̂ it is evaluated in e = ε̂/T ≤ 1,
+ *   k_g = (1 − g²)·√(1 + e²) / (T²·((1 − g)² e² + (1 + g)²)^{3/2}),
+ * which cannot overflow for T up to the double range (it underflows to 0 beyond 1e154, where
+ * the integrand is below any sum it is added to). */
+SLUT_FN double slut_hg_air_kernel(double g, double eps, double T) {
+    double one_minus_g2 = (1.0 - g) * (1.0 + g);
+    if (T >= eps) {
+        double e = eps / T, a = (1.0 - g) * e, b = 1.0 + g;
+        double Q = a * a + b * b;
+        return one_minus_g2 * sqrt(1.0 + e * e) / ((T * T) * (Q * sqrt(Q)));
+    }
+    {
+        double f = T / eps, a = 1.0 - g, b = (1.0 + g) * f;
+        double Q = a * a + b * b;
+        return one_minus_g2 * sqrt(1.0 + f * f) / ((eps * eps) * (Q * sqrt(Q)));
+    }
+}
+
+/* ψ_g(2ξ) at T = τ̂ + z: sin²ξ = T²/(ε̂² + T²), cos²ξ = ε̂²/(ε̂² + T²). */
+SLUT_FN double slut_hg_air_psi(double g, double eps, double T) {
+    if (T >= eps) {
+        double e2 = (eps / T) * (eps / T);
+        return slut_hg_psi_half(g, 1.0 / (1.0 + e2), e2 / (1.0 + e2));
+    }
+    {
+        double f2 = (T / eps) * (T / eps);
+        return slut_hg_psi_half(g, f2 / (1.0 + f2), 1.0 / (1.0 + f2));
+    }
+}
+
+/* ∫_a^b e^{−û z} k_g(τ̂ + z) dz with 16-point Gauss–Legendre. */
+SLUT_FN double slut_hg_air_panel(double u, double tau, double eps, double g, double a, double b) {
+    double half_len = 0.5 * (b - a), mid = 0.5 * (a + b), sum = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        double dz = half_len * slut_gl16_x[k];
+        double z0 = mid - dz, z1 = mid + dz;
+        sum += slut_gl16_w[k] * (exp(-u * z0) * slut_hg_air_kernel(g, eps, tau + z0) +
+                                 exp(-u * z1) * slut_hg_air_kernel(g, eps, tau + z1));
+    }
+    return half_len * sum;
+}
+
+/* K_g(û, τ̂, ε̂, Z) = ∫_0^Z e^{−û z} k_g(τ̂ + z) dz by composite Gauss–Legendre; Z may be +∞
+ * (anything above 1e300), û ≥ 0, τ̂ ∈ [0, 1], ε̂ ∈ [0, 1] with max(τ̂, ε̂) = 1, |g| < 1.
+ *
+ * The panels of slut_w_gs_quadrature, with the phase's singularities added: k_g is analytic
+ * except at T = ±iε̂ (branch points of r) and T = ±iε̂(1 − g)/(1 + g) (zeros of Q: the forward
+ * peak, width (1 − g)/(1 + g) in tan ξ, as g → 1). With b̂ = ε̂·min(1, (1 − g)/(1 + g)) the
+ * nearest one lies |τ̂ + i b̂| from z = 0 and at least τ̂ + z from any z > 0. Panels: [0, z0]
+ * with z0 = ½ min(1/û, |τ̂ + i b̂|) (at most e^{−1/2} of decay, the singularities ≥ 2 panel
+ * lengths away), then [z, ρz] growing geometrically (ρ = 1 + 1/refine; refine = 1 is the
+ * rule, larger values an independent finer one), each ≥ 1.5 panel lengths from every
+ * singularity (Bernstein ρ_B ≥ 5.8: 16-point error ≲ ρ_B^{−32}); the exponential varies by
+ * at most e^{−(ρ−1)ûz} over a panel, and panels past ûz ≈ 40 carry less than e^{−40}.
+ * For g → −1 the integrand rises ~ T up to T ≈ ε̂(1 − g)/(1 + g) (the backward peak at
+ * ξ → π/2) and falls like 1/T² after it: smooth on the panels' own scale.
+ * Stop once the remainder bound ∫_Y^∞ ≤ e^{−ûY}·ψ_max/(τ̂ + Y) is below 1e-17 of the sum,
+ * ψ_max = ψ_g at Y for g ≥ 0 (ψ falls as ξ grows) and ψ_g(π) for g < 0. Relative error
+ * ~1e-15 (every term is positive). û > 1e300: the leading Watson term k_g(τ̂)/û. */
+SLUT_FN double slut_hg_air_integral(double u, double tau, double eps, double z_end, double g, double refine) {
+    if (!(z_end > 0.0)) return 0.0;
+    if (!(u <= 1e300)) return slut_hg_air_kernel(g, eps, tau) / u;
+    double ratio = 1.0 + 1.0 / refine;
+    double b_hat = eps * fmin(1.0, (1.0 - g) / (1.0 + g));
+    double dist = sqrt(tau * tau + b_hat * b_hat);
+    double z0 = 0.5 * fmin((u > 0.0) ? 1.0 / u : SLUT_HUGE_VAL, dist) / refine;
+    if (z_end <= z0) return slut_hg_air_panel(u, tau, eps, g, 0.0, z_end);
+    double sum = slut_hg_air_panel(u, tau, eps, g, 0.0, z0);
+    double psi_back = slut_hg_psi_backward(g);
+    double z = z0;
+    for (int panel = 0; panel < 4000 && z < z_end; ++panel) {
+        double T = tau + z;
+        double psi_bound = (g >= 0.0) ? slut_hg_air_psi(g, eps, T) : psi_back;
+        if (exp(-u * z) * psi_bound / T <= 1e-17 * sum) break;
+        double z_next = fmin(z * ratio, z_end);
+        sum += slut_hg_air_panel(u, tau, eps, g, z, z_next);
+        z = z_next;
+    }
+    return sum;
+}
+
+/* The scaling of a tail at w ∈ (0, π/2]: λ = max(1, cot w); τ̂ = cot w/λ, ε̂ = 1/λ, and the
+ * factor 1/λ of w·G̃_g. */
+SLUT_FN void slut_hg_tail_scaling(double w, double *tau_hat, double *eps_hat, double *inv_lambda) {
+    double sw = sin(w), cw = cos(w);
+    if (cw <= sw) { /* w ≥ π/4: cot w ≤ 1 */
+        *tau_hat = cw / sw;
+        *eps_hat = 1.0;
+        *inv_lambda = 1.0;
+    } else {
+        *tau_hat = 1.0;
+        *eps_hat = sw / cw;
+        *inv_lambda = sw / cw;
+    }
+}
+
+/* w·G̃_g(u, w) by quadrature for every g (g = 0 included: the general rule, for the tests). */
+SLUT_FN double slut_hg_w_gs_quadrature_general(double u, double w, double g, double refine) {
+    double tau_hat, eps_hat, inv_lambda;
+    slut_hg_tail_scaling(w, &tau_hat, &eps_hat, &inv_lambda);
+    return inv_lambda * slut_hg_air_integral(u / inv_lambda, tau_hat, eps_hat, SLUT_HUGE_VAL, g, refine);
+}
+
+/* w·G̃_g(u, w), u ≥ 0, w ∈ (0, π/2]; g = 0 is slut_w_gs_quadrature. */
+SLUT_FN double slut_hg_w_gs_quadrature(double u, double w, double g, double refine) {
+    if (g == 0.0) return slut_w_gs_quadrature(u, w, refine);
+    return slut_hg_w_gs_quadrature_general(u, w, g, refine);
+}
+
+/* G̃_g(u, w) ∈ (0, ψ_max]: G̃_g(0, w) = mean of ψ_g(2ξ) over ξ ∈ [π/2 − w, π/2]. */
+SLUT_FN double slut_hg_gs_quadrature(double u, double w, double g, double refine) {
+    return slut_hg_w_gs_quadrature(u, w, g, refine) / w;
+}
+
+/* F_g(u, v) = ∫_0^v ψ_g(2ξ) e^{−u tan ξ} dξ, u ≥ 0, v ∈ [0, π/2]; g = 0 is slut_F_quadrature. */
+SLUT_FN double slut_hg_F_quadrature_general(double u, double v, double g) {
+    if (!(v > 0.0)) return 0.0;
+    double w = slut_pio2_minus(v);
+    double tan_v = (w > 0.0) ? slut_tan_v(v, w) : SLUT_HUGE_VAL;
+    return slut_hg_air_integral(u, 0.0, 1.0, tan_v, g, 1.0);
+}
+SLUT_FN double slut_hg_F_quadrature(double u, double v, double g) {
+    if (g == 0.0) return slut_F_quadrature(u, v);
+    return slut_hg_F_quadrature_general(u, v, g);
+}
+
+/* ------------------------------------------------------------ asymptotic forms of G̃_g */
+
+/* G̃_g as w → 0 at fixed a = u·cot w. In the scaled integral (τ̂ = 1, ε = tan w, z as above),
+ * with x = ε²/(1 + z)² and κ = ((1 − g)/(1 + g))²,
+ *   k_g = ψ_g(π)·(1 + z)^{−2}·(1 + x)^{1/2}(1 + κx)^{−3/2}
+ *       = ψ_g(π)·(1 + z)^{−2}·[1 + c1 x + c2 x² + c3 x³ + …],
+ *   c1 = ½ − 3κ/2,  c2 = 15κ²/8 − 3κ/4 − 1/8,  c3 = −35κ³/16 + 15κ²/16 + 3κ/16 + 1/16,
+ * and ∫_0^∞ e^{−az}(1 + z)^{−n} dz = e^a E_n(a), so
+ *   G̃_g = (tan w/w)·ψ_g(π)·[e^aE_2(a) + c1 tan²w e^aE_4(a) + c2 tan⁴w e^aE_6(a) + O(tan⁶w)].
+ * At g = 0 (κ = 1: c1 = −1, c2 = 1) the first two terms are slut_gs_small_w's. Truncation
+ * error ≈ |c3| tan⁶w relative to the leading term (e^aE_8 ≤ e^aE_2): ≤ tan⁶w for g ≥ 0
+ * (κ ≤ 1: |c3| ≤ 1), but for g < 0 the backward peak (width (1 + g)/(1 − g) in w) makes κ
+ * large: ≈ 2.2 (κ tan²w)³, so ≤ 1e-13 needs w ≤ 3e-5 at g = −0.99 and w ≤ 2e-3 at
+ * g = −0.5 (measured in tests/test_anisotropic.cpp, SmallWAndLargeUFormsMatchQuadrature).
+ * g = 0 hands to slut_gs_small_w (today's two terms). */
+SLUT_FN double slut_hg_gs_small_w(double w, double a, double g) {
+    if (g == 0.0) return slut_gs_small_w(w, a);
+    double tw = tan(w), e2 = tw * tw;
+    double ratio = (w > 0.0) ? tw / w : 1.0;
+    double kr = (1.0 - g) / (1.0 + g), kappa = kr * kr;
+    double c1 = 0.5 - 1.5 * kappa;
+    double c2 = 1.875 * kappa * kappa - 0.75 * kappa - 0.125;
+    return ratio * slut_hg_psi_backward(g) *
+           (slut_exp_expint(2, a) + e2 * (c1 * slut_exp_expint(4, a) + e2 * c2 * slut_exp_expint(6, a)));
+}
+
+#define SLUT_HG_SERIES_TERMS 24
+
+/* Taylor coefficients c[0..n−1] of P(z)^α about z = 0, P = p0 + p1 z + p2 z² (p0 > 0):
+ * from P y' = α P' y, c[k+1] = ((α − k) p1 c[k] + (2α − k + 1) p2 c[k−1]) / ((k + 1) p0). */
+SLUT_FN void slut_hg_series_pow(double p0, double p1, double p2, double alpha, int n, double *c) {
+    c[0] = pow(p0, alpha);
+    if (n > 1) c[1] = alpha * p1 * c[0] / p0;
+    for (int k = 1; k + 1 < n; ++k)
+        c[k + 1] = ((alpha - (double)k) * p1 * c[k] + (2.0 * alpha - (double)k + 1.0) * p2 * c[k - 1]) /
+                   ((double)(k + 1) * p0);
+}
+
+/* K_g(û, τ̂, ε̂, ∞) for large û by Watson's lemma: with k_g(τ̂ + z) = Σ_n k_n z^n,
+ *   K_g ~ Σ_n k_n n!/û^{n+1},
+ * k_n from the series of (ε̂² + (τ̂ + z)²)^{1/2} and Q(z)^{−3/2} (both quadratics in z: the
+ * recurrence above) and their product. Asymptotic: the terms shrink like n/(û·ρ) with
+ * ρ = |τ̂ + i b̂| the distance to the nearest singularity (slut_hg_air_integral), so the sum
+ * stops at its smallest term (≤ SLUT_HG_SERIES_TERMS), which is its error. For g → 1 and
+ * w → π/2 (τ̂ → 0) ρ → (1 − g)/(1 + g): the forward peak needs û ≫ n(1 + g)/(1 − g). */
+SLUT_FN double slut_hg_air_integral_large_u(double u, double tau, double eps, double g) {
+    double r2c[SLUT_HG_SERIES_TERMS], qc[SLUT_HG_SERIES_TERMS];
+    double gm = 1.0 - g, gp = 1.0 + g;
+    slut_hg_series_pow(eps * eps + tau * tau, 2.0 * tau, 1.0, 0.5, SLUT_HG_SERIES_TERMS, r2c);
+    slut_hg_series_pow(gm * gm * eps * eps + gp * gp * tau * tau, 2.0 * gp * gp * tau, gp * gp, -1.5,
+                       SLUT_HG_SERIES_TERMS, qc);
+    /* factor = n!/û^{n+1}. Where τ̂ → 0 (w → π/2) the odd terms vanish, so each term is
+     * compared with the one two places back: the sum stops where the terms begin to grow. */
+    double sum = 0.0, factor = 1.0 / u, before_last = SLUT_HUGE_VAL, last = SLUT_HUGE_VAL;
+    for (int n = 0; n < SLUT_HG_SERIES_TERMS; ++n) {
+        double kn = 0.0;
+        for (int j = 0; j <= n; ++j) kn += r2c[j] * qc[n - j];
+        double term = gm * gp * kn * factor;
+        factor *= (double)(n + 1) / u;
+        if (fabs(term) >= before_last) break;
+        sum += term;
+        before_last = last;
+        last = fabs(term);
+    }
+    return sum;
+}
+
+/* G̃_g(u, w) for large u (Watson's lemma above); g = 0 hands to slut_gs_large_u. */
+SLUT_FN double slut_hg_gs_large_u_general(double u, double w, double g) {
+    double tau_hat, eps_hat, inv_lambda;
+    slut_hg_tail_scaling(w, &tau_hat, &eps_hat, &inv_lambda);
+    return inv_lambda * slut_hg_air_integral_large_u(u / inv_lambda, tau_hat, eps_hat, g) / w;
+}
+SLUT_FN double slut_hg_gs_large_u(double u, double w, double g) {
+    if (g == 0.0) return slut_gs_large_u(u, w);
+    return slut_hg_gs_large_u_general(u, w, g);
+}
+
+/* ------------------------------------------------------------ exact radiance */
+
+/* sin(γ/2) and cos(γ/2) from sin γ ≥ 0 and cos γ without cancellation on either side
+ * (as slut_airlight_setup: sin²γ = (1 − cos γ)(1 + cos γ)). */
+SLUT_FN void slut_hg_half_angles(double sin_gamma, double cos_gamma, double *sin_half, double *cos_half) {
+    double sg = fmax(sin_gamma, 0.0);
+    double one_minus_cos = (cos_gamma > 0.0) ? sg * sg / (1.0 + cos_gamma) : 1.0 - cos_gamma;
+    double one_plus_cos = (cos_gamma < 0.0) ? sg * sg / (1.0 - cos_gamma) : 1.0 + cos_gamma;
+    *sin_half = sqrt(0.5 * one_minus_cos);
+    *cos_half = sqrt(0.5 * one_plus_cos);
+}
+
+/* The dimensionless bracket of the anisotropic airlight,
+ *   B_g = (1/sin γ) ∫_{v2}^{v1} ψ_g(2ξ) e^{−u (tan ξ − tan v2)} dξ,
+ *   L = σ_s/(4π)·I0·(2/D)·e^{−σ_t D}·B_g,
+ * from σ_t D (optical_distance), sin(γ/2), cos(γ/2) and s/D (> 1e300: an infinite ray).
+ *
+ * In t = tan ξ the segment runs from τ2 = tan(γ/2) to τ1 = τ2 + Δ/h, Δ = s + d(s) − D,
+ * h = D sin γ; with the scaling λ = max(1, τ2) of the file comment (λ sin γ = μ):
+ *   γ ≤ π/2: λ = 1,  τ̂ = tan(γ/2), ε̂ = 1,           μ = sin γ = 2 sin(γ/2) cos(γ/2);
+ *   γ > π/2: λ = τ2, τ̂ = 1,        ε̂ = cot(γ/2),    μ = 1 − cos γ = 2 sin²(γ/2);
+ *   û = σ_t D μ,  Z = Δ/(D μ),  B_g = K_g(û, τ̂, ε̂, Z)/μ.
+ * Δ without cancellation (d' = d(s)/D, s' = s/D): s' ≥ 1: Δ/D = (s' − 1) + d'; s' < 1:
+ * Δ/D = 4 s' sin²(γ/2)/(d' + 1 − s') (d'² − (1 − s')² = 4s' sin²(γ/2)), so that
+ *   Z = 2s' tan(γ/2)/(d' + 1 − s')   (γ ≤ π/2),   Z = 2s'/(d' + 1 − s')   (γ > π/2),
+ * finite and exact as γ → 0 (where Δ and h vanish together) and as γ → π (ε̂ → 0: the
+ * integrand stays finite, nothing divides by sin γ). γ = 0 exactly: the light path is D
+ * from every point and θ = 0, so B_g = ψ_g(0)·s'/(2(1 − s')) for s' < 1 and +∞ for s' ≥ 1
+ * (the ray reaches the light); sin(γ/2) < 1e-150 with s' < 1 takes that limit too (relative
+ * difference O(γ²)). Every term positive: relative accuracy ~1e-14. */
+SLUT_FN double slut_hg_airlight_bracket(double optical_distance, double sin_half, double cos_half, double s_over_D,
+                                        double g, double refine) {
+    double sp = s_over_D;
+    if (!(sp > 0.0)) return 0.0;
+    int infinite = !(sp <= 1e300);
+    if (!(sin_half >= 1e-150)) {
+        if (infinite || sp >= 1.0) {
+            if (!(sin_half > 0.0)) return SLUT_HUGE_VAL;
+        } else {
+            return slut_hg_psi_forward(g) * sp / (2.0 * (1.0 - sp));
+        }
+    }
+    double sh2 = sin_half * sin_half;
+    double d_far = infinite ? SLUT_HUGE_VAL
+                            : ((sp > 1.0) ? sp * sqrt((1.0 - 1.0 / sp) * (1.0 - 1.0 / sp) + 4.0 * sh2 / sp)
+                                          : sqrt((1.0 - sp) * (1.0 - sp) + 4.0 * sp * sh2));
+    int narrow = cos_half >= sin_half;
+    double tau_hat = narrow ? sin_half / cos_half : 1.0;
+    double eps_hat = narrow ? 1.0 : cos_half / sin_half;
+    double mu = narrow ? 2.0 * sin_half * cos_half : 2.0 * sh2;
+    double z_end;
+    if (infinite) z_end = SLUT_HUGE_VAL;
+    else if (sp >= 1.0) z_end = ((sp - 1.0) + d_far) / mu;
+    else z_end = 2.0 * sp * tau_hat / (d_far + (1.0 - sp)); /* τ̂ = tan(γ/2) or 1 */
+    double K = slut_hg_air_integral(optical_distance * mu, tau_hat, eps_hat, z_end, g, refine);
+    return K / mu;
+}
+
+/* Exact anisotropic airlight radiance, W/(m²·sr) for I0 in W/sr, coefficients in 1/m,
+ * lengths in m (length > 1e300: an infinite ray), γ given by sin γ ≥ 0 and cos γ.
+ * 0 for σ_s = 0, I0 = 0, s = 0 or σ_t D ≥ 1e300; +∞ where the ray reaches the light; never
+ * NaN. Where σ_s·I0·e^{−σ_t D}/D leaves the double range the product is formed in
+ * logarithms. refine = 1 is the rule (larger: the finer independent one). */
+SLUT_FN double slut_hg_airlight_radiance(double sigma_s, double sigma_a, double intensity, double distance,
+                                         double sin_gamma, double cos_gamma, double length, double g,
+                                         double refine) {
+    double sigma_t = sigma_s + sigma_a, sh, ch;
+    if (!(sigma_s > 0.0) || !(intensity > 0.0) || !(length > 0.0)) return 0.0;
+    if (!(sigma_t * distance < 1e300)) return 0.0;
+    slut_hg_half_angles(sin_gamma, cos_gamma, &sh, &ch);
+    double s_over_D = (length > 1e300) ? SLUT_HUGE_VAL : length / distance;
+    double B = slut_hg_airlight_bracket(sigma_t * distance, sh, ch, s_over_D, g, refine);
+    if (!(B > 0.0)) return 0.0;
+    if (!SLUT_ISFINITE(B)) return SLUT_HUGE_VAL;
+    double scale = sigma_s * SLUT_INV_4PI * intensity * 2.0 / distance * exp(-sigma_t * distance);
+    if (scale >= SLUT_DBL_MIN_NORMAL && scale <= 1e300) return scale * B;
+    return exp(log(sigma_s) + log(SLUT_INV_4PI * 2.0) + log(intensity) - log(distance) - sigma_t * distance + log(B));
+}
+
+#endif /* SLUT_AIRLIGHT_HG_H */

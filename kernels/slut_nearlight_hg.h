@@ -1,0 +1,147 @@
+/* scatterlut — the near-light integral of Gath 2008 with a Henyey–Greenstein phase, written once.
+ *
+ * Geometry, symbols and the isotropic integral: kernels/slut_nearlight.h and docs/PHYSICS.md
+ * §1.2; the phase: docs/PHYSICS.md §1.4. The point at depth x is P(x) = O − xω, the light
+ * sits at O + l ω_l, so the light propagates along (P − light)/h = −(xω + lω_l)/h and the
+ * direction from P to the viewer is ω:
+ *
+ *   cos θ(x) = −(x + l g)/h(x),   g = ω·ω_l (the near-light g, NOT the phase's asymmetry),
+ *
+ * in optical units cos θ = −δ/η with δ = τ + g, η = √(δ² + 1 − g²) (τ = t/T, units of T).
+ * The phase varies along the ray, so it enters under the integral:
+ *
+ *   N_g(T, g, r, S) = ∫_0^S ψ_{g_hg}(θ(t)) exp(−t − ĥ(t) t/(t + T r)) / ĥ(t)² dt,
+ *   E_g = N_g / H(T, g, S)  ∈ (0, ψ_max],      L = σ_s/(4π)·I0·E_g·(T·H)/l,
+ *
+ * ψ = 4π p_{g_hg} (kernels/slut_phase.h), H the closed form of slut_nl_H. E_g is the
+ * ĥ^{−2}-weighted mean of ψ·attenuation (E_0 = E). The half angles come without
+ * cancellation: sin²(θ/2) = (η + δ)/(2η), cos²(θ/2) = (η − δ)/(2η), and the one of η ± δ
+ * that would cancel is (1 − g²)/(η ∓ δ).
+ *
+ * r = 0 is the airlight with D = l, cos γ = −g and the same g_hg (cos θ = (D cos γ − x)/d
+ * there): σ_t N_g(σ_t D, −cos γ, 0, σ_t s) = (4π/(σ_s I0))·L_airlight,g.
+ *
+ * C99/OpenCL C compatible, double precision; used by the runtime library and the tests.
+ */
+#ifndef SLUT_NEARLIGHT_HG_H
+#define SLUT_NEARLIGHT_HG_H
+
+#include "slut_compat.h"
+#include "slut_phase.h"
+#include "slut_nearlight.h" /* slut_nl_H_scaled, slut_nl_inv_square_integral; slut_gl16_x/w */
+
+#define SLUT_HG_NL_ELLIPSE 2.0   /* min (dist(a) + dist(b))/(b − a) for the poles of 1/η² */
+#define SLUT_HG_NL_EFOLDS 12.0   /* max e-folds of the exponent per panel                */
+#define SLUT_HG_NL_TAIL_EPS 1e-17 /* stop once the remainder bound is below this × sum   */
+#define SLUT_HG_NL_MAX_PANELS 4096
+
+/* ψ_{g_hg}(θ) at offset δ = τ + g, η = √(δ² + sg2), sg2 = 1 − g² (η > 0). */
+SLUT_FN double slut_hg_nl_psi(double phase_g, double dl, double eta, double sg2) {
+    double s2, c2;
+    if (dl >= 0.0) {
+        s2 = (eta + dl) / (2.0 * eta);
+        c2 = sg2 / (eta + dl) / (2.0 * eta);
+    } else {
+        c2 = (eta - dl) / (2.0 * eta);
+        s2 = sg2 / (eta - dl) / (2.0 * eta);
+    }
+    return slut_hg_psi_half(phase_g, s2, c2);
+}
+
+/* E_g(T, g, r, S) by composite 16-point Gauss–Legendre in τ = t/T, with the lengths given as
+ * S/T (S_over_T > 1e300: a thick medium), so that T = 0 (σ_t → 0: E_g is then the
+ * ĥ^{−2}-weighted mean of ψ alone) needs no special case.
+ *
+ * Panels: the rules of slut_nl_panel_length, restated here for one r:
+ *  1. the poles of 1/η² at δ = ±i√(1 − g²) (Bernstein ellipse, A = 2): h ≤ 2(Aη + δ)/(A² − 1);
+ *  2. the essential singularity of the layer at τ = −r, where it matters
+ *     (T r max(η/(τ + r), 1) > 1e-17): h ≤ 2(τ + r)/(A − 1);
+ *  3. decay: T h (2 + 2(η + h) k) ≤ 12 e-folds, k = r/(τ + r)².
+ * The phase adds no closer singularity: 1 + g_hg² + 2g_hg δ/η = 0 at δ = ±i√(1 − g²)(1 + g_hg²)/(1 − g_hg²),
+ * always farther from the real axis than η's poles, and its forward peak (θ → 0, reached
+ * for δ → −∞ before the light's foot point) varies on the scale |δ| that rule 1 resolves.
+ * Stop once a(τ)·ψ_rest·rest ≤ 1e-17 of the sum, a the attenuation (non-increasing along the
+ * ray), ψ_rest = ψ at τ for g_hg ≥ 0 (θ grows along the ray) and ψ(π) for g_hg < 0, rest =
+ * ∫_τ^end η^{−2} (closed form) or, past the foot point (δ ≥ 0, where the exponent's slope is
+ * ≥ T), 1/(T η²). Near the peak (g < 0, τ ≥ −g/2) the march carries δ instead of τ (exact
+ * offsets from the foot point). refine > 1: A → 1 + (A − 1) refine and 12 → 12/refine, a finer
+ * independent mesh. Special cases: S = 0: ψ(θ(0))·(e^{−T} for r = 0, else 1); g = −1 with
+ * S ≥ T (the ray runs through the light): ψ_g(0)·e^{−T} (the weight gathers at the light,
+ * reached with θ = 0). */
+SLUT_FN double slut_hg_nl_E(double T, double g, double r, double S_over_T, double phase_g, double refine) {
+    g = slut_clamp(g, -1.0, 1.0);
+    double sg2 = (1.0 - fabs(g)) * (1.0 + fabs(g)), sg = sqrt(sg2);
+    double tau_end = (S_over_T > 1e300) ? SLUT_HUGE_VAL : S_over_T;
+    int finite_S = !(tau_end > 1e300);
+    int r_inf = !(r <= 1e300);
+    if (!(tau_end > 0.0)) return slut_hg_nl_psi(phase_g, g, 1.0, sg2) * ((r > 0.0) ? 1.0 : exp(-T));
+    if (sg == 0.0 && g < 0.0 && tau_end >= 1.0) return slut_hg_psi_forward(phase_g) * exp(-T);
+    double inv_H = 1.0 / slut_nl_H_scaled(g, finite_S ? tau_end : SLUT_HUGE_VAL);
+    double A = 1.0 + (SLUT_HG_NL_ELLIPSE - 1.0) * refine;
+    double efolds = SLUT_HG_NL_EFOLDS / refine;
+    double tail_eps = SLUT_HG_NL_TAIL_EPS / pow(refine, 15.0);
+    double psi_back = slut_hg_psi_backward(phase_g);
+    double tau = 0.0, dl = g, d_end = tau_end + g, sum = 0.0;
+    int carry_d = 0;
+    for (int panel = 0; panel < SLUT_HG_NL_MAX_PANELS; ++panel) {
+        if (!carry_d && g < 0.0 && tau >= -0.5 * g) carry_d = 1;
+        double eta2 = dl * dl + sg2, eta = sqrt(eta2);
+        if (panel > 0) {
+            double q0 = r_inf ? 0.0 : ((r > 0.0) ? tau / (tau + r) : 1.0);
+            double attenuation = exp(-T * (tau + eta * q0));
+            double psi_rest = (phase_g >= 0.0) ? slut_hg_nl_psi(phase_g, dl, eta, sg2) : psi_back;
+            double len = finite_S ? (carry_d ? d_end - dl : tau_end - tau) : SLUT_HUGE_VAL;
+            double rest = inv_H * slut_nl_inv_square_integral(len, eta2, dl, sg);
+            if (dl >= 0.0 && T > 0.0) rest = fmin(rest, inv_H / (T * eta2));
+            if (attenuation * psi_rest * rest <= tail_eps * sum) break;
+        }
+        double h = 2.0 * (A * eta + dl) / (A * A - 1.0);
+        double k_rate = (r > 0.0 && !r_inf) ? r / ((tau + r) * (tau + r)) : 0.0;
+        if (r > 0.0 && !r_inf && T * r * fmax(eta / (tau + r), 1.0) > 1e-17) h = fmin(h, 2.0 * (tau + r) / (A - 1.0));
+        if (T > 0.0) {
+            double L = efolds / T, B = 2.0 + 2.0 * eta * k_rate;
+            h = fmin(h, (2.0 * L / B) / (1.0 + sqrt(1.0 + (8.0 * L / B) * (k_rate / B))));
+        }
+        if (!(h > 0.0)) break; /* cannot happen for η > 0; never loop on it */
+        int last = 0;
+        if (finite_S) {
+            double remaining = carry_d ? d_end - dl : tau_end - tau;
+            if (h >= remaining) {
+                h = fmax(remaining, 0.0);
+                last = 1;
+            }
+        }
+        double half_len = 0.5 * h, part = 0.0;
+        for (int k = 0; k < 16; ++k) {
+            double x = (k < 8) ? -slut_gl16_x[k] : slut_gl16_x[k - 8];
+            double off = half_len + half_len * x;
+            double tn = carry_d ? (dl + off) - g : tau + off;
+            double dn = carry_d ? dl + off : tn + g;
+            double en2 = dn * dn + sg2, en = sqrt(en2);
+            double q = r_inf ? 0.0 : ((r > 0.0) ? tn / (tn + r) : 1.0);
+            part += slut_gl16_w[(k < 8) ? k : k - 8] * slut_hg_nl_psi(phase_g, dn, en, sg2) *
+                    exp(-T * (tn + en * q)) / en2;
+        }
+        sum += half_len * inv_H * part;
+        if (last) break;
+        if (carry_d) {
+            dl += h;
+            tau = dl - g;
+        } else {
+            tau += h;
+            dl = tau + g;
+        }
+    }
+    return sum;
+}
+
+/* N_g = E_g·H (+∞ where H diverges: T = 0 with S > 0, or g = −1 with S ≥ T). */
+SLUT_FN double slut_hg_nl_N(double T, double g, double r, double S, double phase_g) {
+    double H = slut_nl_H(T, g, S);
+    if (!(H > 0.0)) return 0.0;
+    if (!SLUT_ISFINITE(H)) return SLUT_HUGE_VAL;
+    double S_over_T = (S > 1e300) ? SLUT_HUGE_VAL : S / T;
+    return slut_hg_nl_E(T, g, r, S_over_T, phase_g, 1.0) * H;
+}
+
+#endif /* SLUT_NEARLIGHT_HG_H */

@@ -1,0 +1,112 @@
+#include "scatterlut/anisotropic.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+extern "C" {
+#include "slut_airlight_hg.h"
+#include "slut_nearlight_hg.h"
+}
+
+namespace scatterlut {
+namespace {
+
+void require(bool ok, const char *message) {
+    if (!ok) throw std::invalid_argument(message);
+}
+
+void check_rgb(const Rgb &sigma, const char *message) {
+    for (double s : sigma) require(s >= 0.0 && std::isfinite(s), message);
+}
+
+// The anisotropic airlight of one channel (q validated, phase_g ≠ 0).
+double airlight_hg(const AirlightQuery &q, double phase_g) {
+    const double half = std::fmin(0.5 * q.gamma_rad, SLUT_PIO2_HI);
+    const double sin_half = std::sin(half), cos_half = std::cos(half);
+    const double sigma_t = q.sigma_s_per_m + q.sigma_a_per_m;
+    if (!(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0)) return 0.0;
+    if (!(sigma_t * q.distance_m < 1e300)) return 0.0;
+    const double s_over_D = (q.length_m > 1e300) ? HUGE_VAL : q.length_m / q.distance_m;
+    const double B = slut_hg_airlight_bracket(sigma_t * q.distance_m, sin_half, cos_half, s_over_D, phase_g, 1.0);
+    if (!(B > 0.0)) return 0.0;
+    if (!std::isfinite(B)) return HUGE_VAL;
+    const double scale = q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * 2.0 / q.distance_m *
+                         std::exp(-sigma_t * q.distance_m);
+    if (scale >= SLUT_DBL_MIN_NORMAL && scale <= 1e300) return scale * B;
+    return std::exp(std::log(q.sigma_s_per_m) + std::log(SLUT_INV_4PI * 2.0) + std::log(q.intensity_W_per_sr) -
+                    std::log(q.distance_m) - sigma_t * q.distance_m + std::log(B));
+}
+
+// The near light of one channel (q validated, phase_g ≠ 0): the parameters as
+// near_light_params (eye-side refraction included), E_g by quadrature, σ_s/(4π)·I0·E_g·(T·H)/l.
+double near_light_hg(const NearLightQuery &q, double phase_g) {
+    double eye_inside[3] = {q.eye_dir[0], q.eye_dir[1], q.eye_dir[2]};
+    const double mu_e = q.eye_dir[0] * q.normal[0] + q.eye_dir[1] * q.normal[1] + q.eye_dir[2] * q.normal[2];
+    require(mu_e > 0.0, "the viewer is below the surface (eye_dir . normal <= 0)");
+    double transmittance = 1.0;
+    if (q.eta != 1.0) {
+        const double cos_t = slut_refract_eye_dir(q.normal, q.eye_dir, q.eta, eye_inside);
+        if (q.fresnel) transmittance = slut_fresnel_transmittance(mu_e, cos_t, q.eta);
+    }
+    slut_nl_params p;
+    slut_nl_params_from_geometry(q.normal, eye_inside, q.light_rel_m, q.sigma_s_per_m + q.sigma_a_per_m, q.length_m,
+                                 &p);
+    if (p.kind != SLUT_NL_OK || !(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0))
+        return 0.0;
+    if (!(p.distance_m > 0.0)) return HUGE_VAL;
+    const double H_scaled = slut_nl_H_scaled(p.g, p.S_over_T);
+    if (!std::isfinite(H_scaled)) return HUGE_VAL;
+    const double E = slut_hg_nl_E(p.T, p.g, p.r, p.S_over_T, phase_g, 1.0);
+    return transmittance * q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * E * H_scaled / p.distance_m;
+}
+
+} // namespace
+
+void check_phase_g(double phase_g) {
+    require(std::isfinite(phase_g) && std::fabs(phase_g) <= 0.999999,
+            "phase_g (Henyey-Greenstein asymmetry) must be finite and within [-0.999999, 0.999999]");
+}
+
+double airlight_radiance_exact(const AirlightQuery &q, double phase_g) {
+    check_phase_g(phase_g);
+    if (phase_g == 0.0) return airlight_radiance_exact(q);
+    check_airlight_query(q);
+    return airlight_hg(q, phase_g);
+}
+
+Rgb airlight_radiance_exact_rgb(const AirlightQuery &q, const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m,
+                                double phase_g) {
+    check_rgb(sigma_s_per_m, "sigma_s must be finite and >= 0 (1/m) in every channel");
+    check_rgb(sigma_a_per_m, "sigma_a must be finite and >= 0 (1/m) in every channel");
+    Rgb out{};
+    for (int c = 0; c < 3; ++c) {
+        AirlightQuery channel = q;
+        channel.sigma_s_per_m = sigma_s_per_m[c];
+        channel.sigma_a_per_m = sigma_a_per_m[c];
+        out[c] = airlight_radiance_exact(channel, phase_g);
+    }
+    return out;
+}
+
+double near_light_radiance_exact(const NearLightQuery &q, double phase_g) {
+    check_phase_g(phase_g);
+    if (phase_g == 0.0) return near_light_radiance_exact(q);
+    check_near_light_query(q);
+    return near_light_hg(q, phase_g);
+}
+
+Rgb near_light_radiance_exact_rgb(const NearLightQuery &q, const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m,
+                                  double phase_g) {
+    check_rgb(sigma_s_per_m, "sigma_s must be finite and >= 0 (1/m) in every channel");
+    check_rgb(sigma_a_per_m, "sigma_a must be finite and >= 0 (1/m) in every channel");
+    Rgb out{};
+    for (int c = 0; c < 3; ++c) {
+        NearLightQuery channel = q;
+        channel.sigma_s_per_m = sigma_s_per_m[c];
+        channel.sigma_a_per_m = sigma_a_per_m[c];
+        out[c] = near_light_radiance_exact(channel, phase_g);
+    }
+    return out;
+}
+
+} // namespace scatterlut
