@@ -17,22 +17,15 @@
 
 #include <unistd.h>
 
-#include "generate_airlight.hpp"
-#include "generate_nearlight.hpp"
 #include "measure_util.hpp"
 #include "opencl_device.hpp"
 #include "plan.hpp"
 #include "scene.hpp"
 #include "scene_queries.hpp"
 #include "svg_plot.hpp"
+#include "text_format.hpp"
 #include "version.hpp"
-#include "scatterlut/airlight.hpp"
 #include "scatterlut/io.hpp"
-#include "scatterlut/nearlight.hpp"
-
-extern "C" {
-#include "slut_nearlight.h"
-}
 
 namespace scatterlut {
 namespace {
@@ -46,14 +39,6 @@ constexpr uint64_t kToleranceSeed = 11; // the same nodes on every rung
 constexpr uint64_t kQuerySeed = 12;
 constexpr uint64_t kLookupSeed = 13;
 constexpr size_t kLookups = 1 << 14;
-// Near light: errors where E ≥ 1e-6, the domain the generator and validate measure.
-constexpr double kNearLightEFloor = 1e-6;
-
-std::string fmt(const char *format, double x) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, format, x);
-    return buf;
-}
 
 
 struct ErrorStats {
@@ -95,83 +80,15 @@ std::vector<double> interleaved_median_seconds(int rounds, const std::vector<std
 volatile double g_sink = 0;
 
 // ---------------------------------------------------------------- what a planned table is
-bool is_airlight(const PlannedTable &t) { return t.kind == kKindAirlightF; }
-
 PlannedTable with_counts(PlannedTable t, const std::vector<int> &c, Storage storage) {
     set_counts(t, c);
-    t.airlight.storage = t.near_light.storage = storage;
+    t.kind->set_storage(t.plan, storage);
     return t;
 }
 
-double planned_tolerance(const PlannedTable &t) {
-    return is_airlight(t) ? t.airlight.integration_tolerance : t.near_light.integration_tolerance;
-}
+double planned_tolerance(const PlannedTable &t) { return t.kind->integration_tolerance(t.plan); }
 
-Table layout_of(const PlannedTable &t, double tolerance) {
-    if (is_airlight(t)) {
-        AirlightPlan p = t.airlight;
-        p.integration_tolerance = tolerance;
-        return make_airlight_table_layout(p);
-    }
-    NearLightPlan p = t.near_light;
-    p.integration_tolerance = tolerance;
-    return make_nearlight_table_layout(p);
-}
-
-std::vector<double> integrate(Device &device, const Table &layout, double tolerance) {
-    return layout.kind == kKindAirlightF ? integrate_airlight_ln_gs(device, layout, tolerance)
-                                         : integrate_nearlight_ln_E(device, layout, {}, tolerance);
-}
-
-Table generate(Device &device, const PlannedTable &t, const Provenance &provenance) {
-    return is_airlight(t) ? generate_airlight_table(device, t.airlight, provenance)
-                          : generate_nearlight_table(device, t.near_light, provenance);
-}
-
-// ---------------------------------------------------------------- the queries of the scene
-// The scene's physical queries for one table, with their exact radiance; near-light
-// queries where E < kNearLightEFloor (or no light arrives) are left out.
-struct QuerySet {
-    std::vector<AirlightQuery> air;
-    std::vector<NearLightQuery> near;
-    std::vector<double> exact;       // W/(m²·sr)
-    std::string description;
-    size_t size() const { return exact.size(); }
-};
-
-QuerySet scene_queries(const Scene &scene, const PlannedTable &t, size_t count) {
-    QuerySet s;
-    if (is_airlight(t)) {
-        std::vector<AirlightQuery> all = sample_airlight_queries(scene, count, kQuerySeed);
-        std::vector<double> exact(all.size());
-        parallel_for(static_cast<int>(all.size()), [&](int i) { exact[static_cast<size_t>(i)] = airlight_radiance_exact(all[static_cast<size_t>(i)]); });
-        for (size_t i = 0; i < all.size(); ++i)
-            if (std::isfinite(exact[i]) && exact[i] > 0) {
-                s.air.push_back(all[i]);
-                s.exact.push_back(exact[i]);
-            }
-        s.description = describe_airlight_queries() + "; rays through the light (infinite radiance) left out";
-        return s;
-    }
-    const bool finite = t.near_light.finite_thickness;
-    std::vector<NearLightQuery> all = sample_near_light_queries(scene, finite, count, kQuerySeed);
-    std::vector<double> exact(all.size()), E(all.size());
-    parallel_for(static_cast<int>(all.size()), [&](int i) {
-        const NearLightQuery &q = all[static_cast<size_t>(i)];
-        const NearLightParams p = near_light_params(q);
-        E[static_cast<size_t>(i)] = p.light_below ? 0.0 : slut_nl_E(p.T, p.g, p.r, p.S);
-        exact[static_cast<size_t>(i)] = near_light_radiance_exact(q);
-    });
-    for (size_t i = 0; i < all.size(); ++i)
-        if (E[i] >= kNearLightEFloor && std::isfinite(exact[i]) && exact[i] > 0) {
-            s.near.push_back(all[i]);
-            s.exact.push_back(exact[i]);
-        }
-    s.description = describe_near_light_queries(finite) + "; queries with E < 1e-6 left out";
-    return s;
-}
-
-template <class Method> std::vector<double> relative_errors(const QuerySet &qs, Method method) {
+template <class Method> std::vector<double> relative_errors(const RadianceQueries &qs, Method method) {
     std::vector<double> err(qs.size());
     parallel_for(static_cast<int>(qs.size()), [&](int i) {
         const size_t k = static_cast<size_t>(i);
@@ -197,18 +114,19 @@ std::vector<ToleranceRung> tolerance_ladder(Device &device, const PlannedTable &
     std::vector<Table> tables;
     std::vector<std::function<void()>> jobs;
     for (double tol : tolerances) {
-        tables.push_back(layout_of(t, tol));
-        tables.back().values = integrate(device, tables.back(), tol); // also the warm-up of this rung
+        tables.push_back(t.kind->layout(t.plan, tol));
+        tables.back().values = t.kind->integrate(device, tables.back(), tol); // also the warm-up of this rung
     }
     for (size_t k = 0; k < tables.size(); ++k)
-        jobs.push_back([&, k] { g_sink = integrate(device, tables[k], tolerances[k]).back(); });
+        jobs.push_back([&, k] { g_sink = t.kind->integrate(device, tables[k], tolerances[k]).back(); });
     const std::vector<double> med = interleaved_median_seconds(rounds, jobs);
     for (size_t k = 0; k < tables.size(); ++k) {
         ToleranceRung r;
         r.tolerance = tolerances[k];
         r.median_ms = 1e3 * med[k];
-        r.max_node_rel = is_airlight(t) ? measure_airlight_integration(tables[k], kToleranceNodes, kToleranceSeed)
-                                        : measure_nearlight_integration(tables[k], kToleranceNodes, kToleranceSeed);
+        r.max_node_rel = t.kind->integration_error(*t.kind->make_sampler(tables[k]),
+                                                   t.kind->generator_nodes(tables[k], kToleranceNodes, kToleranceSeed),
+                                                   IntegrationReference::FinerPanelRule);
         r.planned = tolerances[k] == planned;
         out.push_back(r);
     }
@@ -236,41 +154,19 @@ std::vector<double> random_params(const Table &t, size_t count) {
 }
 
 // ns per table lookup (G̃ or E) at random in-domain parameters, median of `rounds`.
-double ns_per_lookup(const Table &table, int rounds) {
+double ns_per_lookup(const TableKind &kind, const Table &table, int rounds) {
     const std::vector<double> p = random_params(table, kLookups);
-    std::function<void()> job;
-    if (table.kind == kKindAirlightF) {
-        auto air = std::make_shared<AirlightTable>(table);
-        job = [air, &p] {
-            double sum = 0;
-            for (size_t i = 0; i < kLookups; ++i) sum += air->scaled_tail(p[2 * i], p[2 * i + 1]);
-            g_sink = sum;
-        };
-    } else {
-        auto near = std::make_shared<NearLightTable>(table);
-        const size_t n = table.axes.size();
-        const double inf = HUGE_VAL;
-        job = [near, &p, n, inf] {
-            double sum = 0;
-            for (size_t i = 0; i < kLookups; ++i)
-                sum += near->E(p[n * i], p[n * i + 1], p[n * i + 2], n == 4 ? p[n * i + 3] : inf);
-            g_sink = sum;
-        };
-    }
+    const std::function<double()> lookups = kind.lookup_loop(table, p, kLookups);
+    const std::function<void()> job = [&lookups] { g_sink = lookups(); };
     job(); // warm caches
     return 1e9 * interleaved_median_seconds(rounds, {job})[0] / static_cast<double>(kLookups);
 }
 
-ErrorStats radiance_errors(const Table &table, const QuerySet &qs) {
-    if (table.kind == kKindAirlightF) {
-        const AirlightTable air(table);
-        return error_stats(relative_errors(qs, [&](size_t k) { return air.radiance(qs.air[k]); }));
-    }
-    const NearLightTable near(table);
-    return error_stats(relative_errors(qs, [&](size_t k) { return near.radiance(qs.near[k]); }));
+ErrorStats radiance_errors(const TableKind &kind, const Table &table, const RadianceQueries &qs) {
+    return error_stats(relative_errors(qs, kind.table_radiance(table, qs)));
 }
 
-std::vector<ResolutionRung> resolution_ladder(Device &device, const PlannedTable &t, const QuerySet &qs,
+std::vector<ResolutionRung> resolution_ladder(Device &device, const PlannedTable &t, const RadianceQueries &qs,
                                               const Provenance &provenance, Storage planned_storage, size_t max_bytes,
                                               int rounds, const std::function<void(double)> &progress) {
     const std::vector<int> planned = counts_of(t);
@@ -291,10 +187,11 @@ std::vector<ResolutionRung> resolution_ladder(Device &device, const PlannedTable
                 ++done;
                 continue;
             }
-            const Table table = generate(device, with_counts(t, c, s), provenance);
+            const PlannedTable rung = with_counts(t, c, s);
+            const Table table = t.kind->generate(device, rung.plan, provenance, {});
             r.table_max_rel = table.accuracy.sampling_max_rel;
-            r.radiance = radiance_errors(table, qs);
-            r.ns_per_lookup = ns_per_lookup(table, rounds);
+            r.radiance = radiance_errors(*t.kind, table, qs);
+            r.ns_per_lookup = ns_per_lookup(*t.kind, table, rounds);
             out.push_back(r);
             if (progress) progress(static_cast<double>(++done) / static_cast<double>(steps));
         }
@@ -311,50 +208,26 @@ struct MethodRow {
     bool reference = false; // the exact quadrature: the errors are measured against it
 };
 
-std::vector<MethodRow> runtime_methods(const Table &table, const QuerySet &qs, int rounds) {
-    struct Method {
-        MethodRow row;
-        std::function<double(size_t)> eval;
-    };
-    std::vector<Method> methods;
-    std::shared_ptr<AirlightTable> air;
-    std::shared_ptr<NearLightTable> near;
-    if (table.kind == kKindAirlightF) {
-        air = std::make_shared<AirlightTable>(table);
-        methods.push_back({{"exact", "quadrature per call (airlight_radiance_exact)", 0, {}, true},
-                           [&](size_t k) { return airlight_radiance_exact(qs.air[k]); }});
-        methods.push_back({{"table", "two samples of the planned F table (AirlightTable::radiance)", 0, {}, false},
-                           [&](size_t k) { return air->radiance(qs.air[k]); }});
-        methods.push_back({{"no_extinction", "closed form without extinction, Macklin 2010 (airlight_radiance_no_extinction)", 0, {}, false},
-                           [&](size_t k) { return airlight_radiance_no_extinction(qs.air[k]); }});
-        methods.push_back({{"attenuated",
-                            "the same times e^(-sigma_t D), an engine fudge (airlight_radiance_no_extinction_attenuated)", 0, {}, false},
-                           [&](size_t k) { return airlight_radiance_no_extinction_attenuated(qs.air[k]); }});
-    } else {
-        near = std::make_shared<NearLightTable>(table);
-        methods.push_back({{"exact", "quadrature per call (near_light_radiance_exact)", 0, {}, true},
-                           [&](size_t k) { return near_light_radiance_exact(qs.near[k]); }});
-        methods.push_back({{"table", "one sample of the planned E table (NearLightTable::radiance)", 0, {}, false},
-                           [&](size_t k) { return near->radiance(qs.near[k]); }});
-        methods.push_back({{"thin", "thin-medium closed form, Gath 2008 §4.2 (near_light_radiance_thin)", 0, {}, false},
-                           [&](size_t k) { return near_light_radiance_thin(qs.near[k]); }});
-        methods.push_back({{"distant", "distant-light limit, Gath 2008 eq. 5 (near_light_radiance_distant)", 0, {}, false},
-                           [&](size_t k) { return near_light_radiance_distant(qs.near[k]); }});
-    }
+std::vector<MethodRow> runtime_methods(const TableKind &kind, const Table &table, const RadianceQueries &qs,
+                                       int rounds) {
+    const std::vector<RuntimeMethod> methods = kind.runtime_methods(table, qs);
     std::vector<std::function<void()>> jobs;
     for (auto &m : methods)
         jobs.push_back([&m, &qs] {
             double sum = 0;
-            for (size_t k = 0; k < qs.size(); ++k) sum += m.eval(k);
+            for (size_t k = 0; k < qs.size(); ++k) sum += m.radiance(k);
             g_sink = sum;
         });
     for (auto &j : jobs) j(); // warm-up
     const std::vector<double> med = interleaved_median_seconds(rounds, jobs);
     std::vector<MethodRow> out;
     for (size_t i = 0; i < methods.size(); ++i) {
-        MethodRow r = methods[i].row;
+        MethodRow r;
+        r.name = methods[i].name;
+        r.what = methods[i].what;
+        r.reference = methods[i].reference;
         r.ns_per_call = 1e9 * med[i] / static_cast<double>(std::max<size_t>(1, qs.size()));
-        if (!r.reference) r.error = error_stats(relative_errors(qs, methods[i].eval));
+        if (!r.reference) r.error = error_stats(relative_errors(qs, methods[i].radiance));
         else r.error.points = qs.size();
         out.push_back(r);
     }
@@ -514,9 +387,9 @@ int run_report(const ReportOptions &opt, const std::string &command_line) {
     const size_t max_bytes = static_cast<size_t>(scene.max_table_MiB * 1024.0 * 1024.0);
 
     for (const PlannedTable &t : plan.tables) {
-        const std::string &kind = t.kind;
+        const std::string kind = t.name();
         std::cout << kind << ":\n";
-        const QuerySet qs = scene_queries(scene, t, static_cast<size_t>(opt.queries));
+        const RadianceQueries qs = t.kind->radiance_queries(scene, t.plan, static_cast<size_t>(opt.queries), kQuerySeed);
         const double accepted = scene.relative_error;
 
         const auto tol = tolerance_ladder(device, t, opt.rounds);
@@ -524,7 +397,7 @@ int run_report(const ReportOptions &opt, const std::string &command_line) {
         const auto res = resolution_ladder(device, t, qs, provenance, storage, max_bytes, opt.rounds,
                                            [&](double f) { progress_line(kind + " resolution ladder", f); });
         std::cout << "  resolution ladder: " << res.size() << " tables\n";
-        const auto methods = runtime_methods(t.table, qs, opt.rounds);
+        const auto methods = runtime_methods(*t.kind, t.table, qs, opt.rounds);
         std::cout << "  runtime methods: " << methods.size() << " on " << qs.size() << " queries\n";
 
         write_text(opt.out_dir + "/" + kind + "_tolerance.csv", tolerance_csv(tol));
@@ -551,7 +424,7 @@ int run_report(const ReportOptions &opt, const std::string &command_line) {
                   " | " + (r.planned ? "planned" : "") + " |\n";
 
         md += "\n### Resolution and storage\n\n![resolution ladder](" + kind + "_resolution.svg)\n\n";
-        md += "Radiance through the runtime (`" + std::string(is_airlight(t) ? "AirlightTable" : "NearLightTable") +
+        md += "Radiance through the runtime (`" + std::string(t.kind->runtime_class()) +
               "::radiance`) against exact quadrature on the queries above; 'table max' is the generator's own "
               "measurement on the tabulated quantity over the whole table.\n\n";
         md += "| nodes | storage | KiB | table max | radiance max | radiance p99 | ns/lookup | |\n"
@@ -564,11 +437,7 @@ int run_report(const ReportOptions &opt, const std::string &command_line) {
 
         md += "\n### Runtime methods\n\n![runtime methods](" + kind + "_methods.svg)\n\n";
         md += "Error: relative to exact quadrature, over the radiance queries above.";
-        if (is_airlight(t))
-            md += " The thin-medium form (Gath 2008 §4.2) and the distant-light limit (Gath 2008 eq. 5) are near-light "
-                  "methods (a light outside the medium); for a viewer and a light inside the medium the alternatives to "
-                  "the table are the closed forms engines use (Macklin 2010): no_extinction drops the attenuation along "
-                  "both legs of the light path, attenuated applies e^(-sigma_t D) to the whole ray.";
+        md += t.kind->methods_note();
         md += "\n\n| method | what | ns/call | median | p90 | p99 | max |\n|---|---|---:|---:|---:|---:|---:|\n";
         for (const auto &r : methods) {
             auto e = [&](double v) { return r.reference ? std::string("reference") : fmt("%.2e", v); };
