@@ -20,6 +20,7 @@
 #include "output_set.hpp"
 #include "plan.hpp"
 #include "scene.hpp"
+#include "text_format.hpp"
 #include "scatterlut/io.hpp"
 #include "version.hpp"
 
@@ -261,12 +262,6 @@ private:
     int fd_ = -1;
 };
 
-std::string hex64_text(uint64_t x) {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(x));
-    return buf;
-}
-
 // The files of one run: every table encoded in memory, then each written to a hidden
 // temporary, the manifest last, and only then all renamed into place (AtomicFileSet).
 void write_output_set(const ScenePlan &plan, const std::string &out_dir, const std::string &command_line) {
@@ -298,7 +293,7 @@ void write_output_set(const ScenePlan &plan, const std::string &out_dir, const s
     nlohmann::json list = nlohmann::json::array();
     for (const File &f : files)
         list.push_back({{"name", f.name}, {"kind", f.kind}, {"format", f.format}, {"bytes", f.bytes.size()},
-                        {"fnv1a64", hex64_text(fnv1a64(f.bytes.data(), f.bytes.size()))}});
+                        {"fnv1a64", hex64(fnv1a64(f.bytes.data(), f.bytes.size()))}});
     manifest["files"] = list;
     const std::string text = manifest.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 
