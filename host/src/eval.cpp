@@ -72,7 +72,7 @@ void eval_vector_field(const nlohmann::json &q, const char *name, double *out) {
 }
 
 void EvalTables::add(const std::string &path, Table table) {
-    const TableKind *kind = find_table_kind(table.kind);
+    const RuntimeKind *kind = find_runtime_kind(table.kind);
     if (!kind) throw LoadError(path + ": table kind '" + table.kind + "' is not one eval knows");
     samplers.push_back(kind->make_sampler(std::move(table)));
 }
@@ -81,7 +81,7 @@ nlohmann::json eval_query(const nlohmann::json &query, const EvalTables &tables)
     if (!query.is_object()) throw std::invalid_argument("a query must be a JSON object");
     // The quantities the kinds answer, in registry order: "F, airlight, N or near_light".
     std::vector<std::string> known;
-    for (const TableKind *k : table_kinds())
+    for (const RuntimeKind *k : runtime_kinds())
         for (const std::string &q : k->eval_quantities())
             if (std::find(known.begin(), known.end(), q) == known.end()) known.push_back(q);
     std::string list;
@@ -91,8 +91,8 @@ nlohmann::json eval_query(const nlohmann::json &query, const EvalTables &tables)
     const std::string quantity = query.at("quantity").get<std::string>();
     nlohmann::json out = query;
     out.erase(kNonFiniteKey); // eval_put()'s bookkeeping key, never a query's
-    const TableKind *answering = nullptr;
-    for (const TableKind *k : table_kinds()) {
+    const RuntimeKind *answering = nullptr;
+    for (const RuntimeKind *k : runtime_kinds()) {
         const std::vector<std::string> q = k->eval_quantities();
         if (std::find(q.begin(), q.end(), quantity) != q.end()) {
             answering = k;

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "kinds/table_kind.hpp"
+#include "kinds/runtime_kind.hpp"
 #include "scatterlut/table.hpp"
 
 namespace scatterlut {

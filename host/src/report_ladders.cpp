@@ -120,7 +120,7 @@ std::vector<ToleranceRung> tolerance_ladder(Device &device, const PlannedTable &
         ToleranceRung r;
         r.tolerance = tolerances[k];
         r.median_ms = 1e3 * med[k];
-        r.max_node_rel = t.kind->integration_error(*t.kind->make_sampler(tables[k]),
+        r.max_node_rel = t.kind->integration_error(*t.kind->runtime().make_sampler(tables[k]),
                                                    t.kind->generator_nodes(tables[k], kToleranceNodes, kToleranceSeed),
                                                    IntegrationReference::FinerPanelRule);
         r.planned = tolerances[k] == planned;

@@ -126,7 +126,7 @@ FileReport validate_file(const std::string &path, const ValidateOptions &opt) {
     // The runtime classes check kind, quantity version, axes and channel.
     std::shared_ptr<const RuntimeSampler> sampler;
     try {
-        sampler = kind->make_sampler(t);
+        sampler = kind->runtime().make_sampler(t);
     } catch (const std::invalid_argument &e) {
         r.status = kExitBadInput;
         r.message = std::string("unreadable or unsupported: ") + e.what();

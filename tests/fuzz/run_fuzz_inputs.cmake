@@ -17,7 +17,8 @@ set(flags -std=c++17 -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=u
           -I${SOURCE_DIR}/tables/include -I${SOURCE_DIR}/kernels -I${SOURCE_DIR}/host/src)
 set(objects "")
 foreach(s tables/src/table tables/src/sampler tables/src/airlight tables/src/nearlight tables/src/io_binary
-          host/src/eval host/src/json_guard host/src/scene)
+          host/src/eval host/src/json_guard host/src/scene host/src/kinds/runtime_registry
+          host/src/kinds/airlight_runtime host/src/kinds/nearlight_runtime)
   get_filename_component(name ${s} NAME)
   step(${CLANGXX} ${flags} -fsanitize=fuzzer-no-link -c ${SOURCE_DIR}/${s}.cpp -o ${WORK_DIR}/obj/${name}.o)
   list(APPEND objects ${WORK_DIR}/obj/${name}.o)

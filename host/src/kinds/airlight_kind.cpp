@@ -6,7 +6,6 @@
 #include <memory>
 #include <string>
 
-#include "eval.hpp"
 #include "generate_airlight.hpp"
 #include "kinds/derivation.hpp"
 #include "measure_util.hpp"
@@ -20,6 +19,9 @@ extern "C" {
 }
 
 namespace scatterlut {
+
+const RuntimeKind &airlight_runtime_kind(); // kinds/airlight_runtime.cpp
+
 namespace {
 
 // The airlight radiance is σ_s p I0 · 2/(D sin γ) · [a − b] with a = e^{−σ_t D}(π/2 − v2) G̃(A1, v2)
@@ -53,18 +55,6 @@ struct Demand {
     double relative_error = HUGE_VAL;
 };
 
-struct Sampler final : RuntimeSampler {
-    explicit Sampler(Table t) : air(std::move(t)) {}
-    const Table &table() const override { return air.table(); }
-    AirlightTable air;
-};
-
-const AirlightTable *first_airlight(const EvalTables &tables) {
-    for (const auto &s : tables.samplers)
-        if (const auto *a = dynamic_cast<const Sampler *>(s.get())) return &a->air;
-    return nullptr;
-}
-
 const AirlightPlan &plan_of(const std::any &plan) { return std::any_cast<const AirlightPlan &>(plan); }
 AirlightPlan &plan_of(std::any &plan) { return std::any_cast<AirlightPlan &>(plan); }
 const std::vector<AirlightQuery> &queries_of(const RadianceQueries &q) {
@@ -73,7 +63,7 @@ const std::vector<AirlightQuery> &queries_of(const RadianceQueries &q) {
 
 class AirlightKind final : public TableKind {
 public:
-    const char *name() const override { return kKindAirlightF; }
+    const RuntimeKind &runtime() const override { return airlight_runtime_kind(); }
 
     void add_demand(const Scene &, const SceneMedium &m, const SceneLight &l, std::any &state,
                     PlannedTable &t) const override {
@@ -144,11 +134,8 @@ public:
                              IntegrationReference reference) const override {
         return measure_airlight_integration(sampler.table(), nodes, reference);
     }
-    std::shared_ptr<const RuntimeSampler> make_sampler(Table table) const override {
-        return std::make_shared<Sampler>(std::move(table));
-    }
     SamplingStats sampling_error(const RuntimeSampler &sampler, int points, uint64_t seed) const override {
-        return measure_airlight_sampling(dynamic_cast<const Sampler &>(sampler).air, points, seed);
+        return measure_airlight_sampling(dynamic_cast<const SamplerOf<AirlightTable> &>(sampler).runtime, points, seed);
     }
 
     RadianceQueries radiance_queries(const Scene &scene, const std::any &, size_t count,
@@ -202,39 +189,6 @@ public:
                "both legs of the light path, attenuated applies e^(-sigma_t D) to the whole ray.";
     }
 
-    std::vector<std::string> eval_quantities() const override { return {"F", "airlight"}; }
-    void answer_eval(const std::string &quantity, const nlohmann::json &q, nlohmann::json &out,
-                     const EvalTables &tables) const override {
-        const AirlightTable *table = first_airlight(tables);
-        if (quantity == "F") {
-            const double u = eval_number_field(q, "u"), v = eval_number_field(q, "v");
-            if (!(u >= 0.0) || !std::isfinite(u)) throw std::invalid_argument("u must be finite and >= 0");
-            if (!(v >= 0.0) || !(v <= 1.5707963267948968)) throw std::invalid_argument("v must lie in [0, pi/2]");
-            eval_put(out, "exact", slut_F_quadrature(u, v));
-            eval_put(out, "tail", slut_tail_quadrature(u, v));
-            if (!table) {
-                out["table"] = nullptr;
-                out["table_tail"] = nullptr;
-            } else {
-                eval_put(out, "table", table->F(u, v));
-                eval_put(out, "table_tail", table->tail(u, v));
-            }
-            return;
-        }
-        AirlightQuery a; // quantity "airlight"
-        a.sigma_s_per_m = eval_number_field(q, "sigma_s");
-        a.sigma_a_per_m = eval_number_field(q, "sigma_a");
-        a.intensity_W_per_sr = eval_number_field(q, "intensity");
-        a.distance_m = eval_number_field(q, "distance");
-        a.gamma_rad = eval_number_field(q, "gamma");
-        a.length_m = eval_number_field(q, "length");
-        const double exact = airlight_radiance_exact(a); // validates the query
-        eval_put(out, "exact", exact);
-        const bool through_light = a.gamma_rad == 0.0 && a.length_m >= a.distance_m;
-        if (through_light) out["note"] = "diverges: the view ray passes through the light";
-        if (!table) out["table"] = nullptr;
-        else eval_put(out, "table", table->radiance(a));
-    }
 };
 
 } // namespace

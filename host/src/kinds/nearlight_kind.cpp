@@ -8,7 +8,6 @@
 #include <memory>
 #include <string>
 
-#include "eval.hpp"
 #include "generate_nearlight.hpp"
 #include "kinds/derivation.hpp"
 #include "measure_util.hpp"
@@ -22,6 +21,11 @@ extern "C" {
 }
 
 namespace scatterlut {
+
+// kinds/nearlight_runtime.cpp
+const RuntimeKind &near_light_thick_runtime_kind();
+const RuntimeKind &near_light_slab_runtime_kind();
+
 namespace {
 
 // Measurements skip E < 1e-6 (generate_nearlight.cpp); so do the search's estimate and the
@@ -34,25 +38,6 @@ struct Demand {
     double relative_error = HUGE_VAL;
 };
 
-struct Sampler final : RuntimeSampler {
-    explicit Sampler(Table t) : near(std::move(t)) {}
-    const Table &table() const override { return near.table(); }
-    NearLightTable near;
-};
-
-// The first near-light table (E3 or E4) covering (T, g, r, S), or null.
-const NearLightTable *covering(const EvalTables &tables, double T, double g, double r, double S) {
-    for (const auto &s : tables.samplers)
-        if (const auto *n = dynamic_cast<const Sampler *>(s.get()))
-            if (n->near.covers(T, g, r, S)) return &n->near;
-    return nullptr;
-}
-
-bool any_near_light(const EvalTables &tables) {
-    return std::any_of(tables.samplers.begin(), tables.samplers.end(),
-                       [](const auto &s) { return dynamic_cast<const Sampler *>(s.get()) != nullptr; });
-}
-
 const NearLightPlan &plan_of(const std::any &plan) { return std::any_cast<const NearLightPlan &>(plan); }
 NearLightPlan &plan_of(std::any &plan) { return std::any_cast<NearLightPlan &>(plan); }
 const std::vector<NearLightQuery> &queries_of(const RadianceQueries &q) {
@@ -63,7 +48,9 @@ class NearLightKind final : public TableKind {
 public:
     explicit NearLightKind(bool finite_thickness) : finite_(finite_thickness) {}
 
-    const char *name() const override { return finite_ ? kKindNearLightE4 : kKindNearLightE3; }
+    const RuntimeKind &runtime() const override {
+        return finite_ ? near_light_slab_runtime_kind() : near_light_thick_runtime_kind();
+    }
 
     void add_demand(const Scene &scene, const SceneMedium &m, const SceneLight &l, std::any &state,
                     PlannedTable &t) const override {
@@ -152,13 +139,10 @@ public:
     }
     double integration_error(const RuntimeSampler &sampler, const std::vector<NodeIndex> &nodes,
                              IntegrationReference reference) const override {
-        return measure_nearlight_integration(dynamic_cast<const Sampler &>(sampler).near, nodes, reference);
-    }
-    std::shared_ptr<const RuntimeSampler> make_sampler(Table table) const override {
-        return std::make_shared<Sampler>(std::move(table));
+        return measure_nearlight_integration(dynamic_cast<const SamplerOf<NearLightTable> &>(sampler).runtime, nodes, reference);
     }
     SamplingStats sampling_error(const RuntimeSampler &sampler, int points, uint64_t seed) const override {
-        return measure_nearlight_sampling(dynamic_cast<const Sampler &>(sampler).near, points, seed);
+        return measure_nearlight_sampling(dynamic_cast<const SamplerOf<NearLightTable> &>(sampler).runtime, points, seed);
     }
 
     RadianceQueries radiance_queries(const Scene &scene, const std::any &, size_t count,
@@ -212,49 +196,6 @@ public:
     }
     const char *runtime_class() const override { return "NearLightTable"; }
     std::string methods_note() const override { return ""; }
-
-    std::vector<std::string> eval_quantities() const override { return {"N", "near_light"}; }
-    void answer_eval(const std::string &quantity, const nlohmann::json &q, nlohmann::json &out,
-                     const EvalTables &tables) const override {
-        if (quantity == "N") {
-            const double T = eval_number_field(q, "T"), g = eval_number_field(q, "g"), r = eval_number_field(q, "r"),
-                         S = eval_number_field(q, "S");
-            if (!(T > 0.0) || !std::isfinite(T)) throw std::invalid_argument("T must be finite and > 0");
-            if (!(g >= -1.0 && g <= 1.0)) throw std::invalid_argument("g must lie in [-1, 1]");
-            if (!(r >= 0.0)) throw std::invalid_argument("r must be >= 0");
-            if (!(S >= 0.0)) throw std::invalid_argument("S must be >= 0 (or \"inf\")");
-            const double H = slut_nl_H(T, g, S), E = slut_nl_E(T, g, r, S);
-            eval_put(out, "exact", (H > 0.0 && std::isfinite(H)) ? E * H : H);
-            eval_put(out, "E", E);
-            eval_put(out, "H", H);
-            const NearLightTable *t = covering(tables, T, g, r, S);
-            if (t) eval_put(out, "table", t->E(T, g, r, S) * H);
-            else out["table"] = nullptr;
-            eval_put(out, "approx", slut_nl_N_thin(T, g, r, S));
-            return;
-        }
-        NearLightQuery n; // quantity "near_light"
-        n.sigma_s_per_m = eval_number_field(q, "sigma_s");
-        n.sigma_a_per_m = eval_number_field(q, "sigma_a");
-        n.intensity_W_per_sr = eval_number_field(q, "intensity");
-        eval_vector_field(q, "normal", n.normal);
-        eval_vector_field(q, "eye_dir", n.eye_dir);
-        eval_vector_field(q, "light_pos", n.light_rel_m);
-        n.length_m = eval_number_field(q, "length");
-        if (q.contains("eta")) n.eta = eval_number_field(q, "eta");
-        if (q.contains("fresnel")) {
-            if (!q.at("fresnel").is_boolean()) throw std::invalid_argument("field \"fresnel\" must be true or false");
-            n.fresnel = q.at("fresnel").get<bool>();
-        }
-        eval_put(out, "exact", near_light_radiance_exact(n)); // validates the query
-        const NearLightParams p = near_light_params(n);
-        const NearLightTable *t = p.light_below ? nullptr : covering(tables, p.T, p.g, p.r, p.S);
-        if (t) eval_put(out, "table", t->radiance(n));
-        else if (p.light_below && any_near_light(tables)) out["table"] = 0.0;
-        else out["table"] = nullptr;
-        eval_put(out, "approx", near_light_radiance_thin(n));
-        eval_put(out, "distant", near_light_radiance_distant(n));
-    }
 
 private:
     bool finite_;

@@ -1,5 +1,5 @@
-// The registry of table kinds: the one list of them, and the one place a kind's name is
-// compared with a string (table_kind.hpp).
+// The registry of table kinds: the one list of their descriptors (table_kind.hpp); names are
+// compared in kinds/runtime_registry.cpp.
 #include "kinds/table_kind.hpp"
 
 namespace scatterlut {
@@ -16,8 +16,9 @@ const std::vector<const TableKind *> &table_kinds() {
 }
 
 const TableKind *find_table_kind(const std::string &name) {
+    const RuntimeKind *runtime = find_runtime_kind(name);
     for (const TableKind *k : table_kinds())
-        if (name == k->name()) return k;
+        if (&k->runtime() == runtime) return k;
     return nullptr;
 }
 

@@ -5,15 +5,16 @@
 // function pointers: a kind has state that several of its functions share (the near-light
 // class serves E3 and E4, parameterized by slab / thick, and is registered twice), and the
 // compiler checks that a new kind supplies every function. The instances are listed once,
-// in kinds/registry.cpp; table_kinds() and find_table_kind() are the only places where a
-// kind's name (Table::kind, the file stem) is compared with a string.
+// in kinds/registry.cpp. A kind's name, runtime sampler and eval answers are its runtime facet
+// (runtime_kind.hpp: it links without OpenCL, as eval does); find_runtime_kind() is the one
+// place where a kind's name (Table::kind, the file stem) is compared with a string.
 //
 // Each kind keeps its own plan type (AirlightPlan, NearLightPlan, …) in a std::any: the
 // planner, the search and the report pass it back to the kind, which alone reads it.
 //
-// Adding a kind: a file kinds/<kind>.cpp with a subclass of TableKind and a function returning
-// its instance, one line in kinds/registry.cpp, the file in host/CMakeLists.txt (and its
-// generator: the kernel launch, its layout).
+// Adding a kind: kinds/<kind>.cpp (a subclass of TableKind and a function returning its
+// instance) and kinds/<kind>_runtime.cpp (its RuntimeKind), one line in kinds/registry.cpp and
+// one in kinds/runtime_registry.cpp, both files in host/CMakeLists.txt.
 #pragma once
 
 #include <any>
@@ -26,6 +27,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "kinds/runtime_kind.hpp"
 #include "measurement.hpp"
 #include "opencl_device.hpp"
 #include "scene.hpp"
@@ -35,14 +37,6 @@ namespace scatterlut {
 
 struct PlannedTable;
 struct AirlightOverrides;
-struct EvalTables;
-
-// A kind's runtime sampler over a loaded table (AirlightTable, NearLightTable, …), opaque to
-// all but its kind.
-struct RuntimeSampler {
-    virtual ~RuntimeSampler() = default;
-    virtual const Table &table() const = 0;
-};
 
 // The scene's physical radiance queries for one table, with their exact radiance. What a
 // query is (its type) is the kind's: `queries` holds its vector.
@@ -64,9 +58,11 @@ class TableKind {
 public:
     virtual ~TableKind() = default;
 
-    // ------------------------------------------------ identity
+    // ------------------------------------------------ identity and runtime
+    // Its runtime facet: name, runtime sampler, eval answers (runtime_kind.hpp).
+    virtual const RuntimeKind &runtime() const = 0;
     // Table::kind of its tables and their file stem (kKindAirlightF, …).
-    virtual const char *name() const = 0;
+    const char *name() const { return runtime().name(); }
 
     // ------------------------------------------------ derivation: its domain from the scene
     // Called for each lit (medium, point light) pair of the scene, with `state` starting
@@ -101,9 +97,6 @@ public:
     // ------------------------------------------------ measurement
     // The nodes the generator measures its integration error at (`nodes` of them, from `seed`).
     virtual std::vector<NodeIndex> generator_nodes(const Table &table, int nodes, uint64_t seed) const = 0;
-    // The runtime sampler of a table of this kind; throws std::invalid_argument when the
-    // table is not one (version, axes, channels).
-    virtual std::shared_ptr<const RuntimeSampler> make_sampler(Table table) const = 0;
     // The largest relative error of the sampler's table's (decoded) values at `nodes` against
     // `reference`; +∞ if one is NaN. The one integration-error measurement of generate,
     // validate and report.
@@ -128,12 +121,6 @@ public:
     virtual const char *runtime_class() const = 0; // "AirlightTable", …
     virtual std::string methods_note() const = 0;  // the report's text under its runtime methods ("" none)
 
-    // ------------------------------------------------ eval
-    // The "quantity" values of eval queries this kind answers.
-    virtual std::vector<std::string> eval_quantities() const = 0;
-    // Answers one query of one of its quantities into `out`, using the loaded tables it can.
-    virtual void answer_eval(const std::string &quantity, const nlohmann::json &query, nlohmann::json &out,
-                             const EvalTables &tables) const = 0;
 };
 
 // Every kind, in the order plans, output sets and reports list them.
