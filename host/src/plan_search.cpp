@@ -28,6 +28,7 @@ constexpr double kIntegrationShare = 0.01;
 // Each refinement changes an axis by at most these factors (the h² model is local).
 constexpr double kMaxGrowth = 3.0, kMaxShrink = 0.5;
 constexpr int kMinNodes = kMinNodesPerAxis, kMaxNodesPerAxis = 8192;
+
 size_t bytes_of(const std::vector<int> &c, Storage storage) {
     size_t n = storage_bytes(storage);
     for (int k : c) n *= static_cast<size_t>(k);
