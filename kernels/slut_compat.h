@@ -85,6 +85,7 @@
 #  define SLUT_EXPINT_SERIES_MAX_TERMS 30
 #  define SLUT_EXPINT_LEADING_ABOVE 1e6
 #  define SLUT_THETA_MAX_PANELS 400
+#  define SLUT_IN_PLANE_TOLERANCE 1e-6
 /* SLUT_PIO2_HI and SLUT_PIO2_LO, π/2 split for float, come from common.slsl (its float
  * math needs them before this header). */
 #endif
@@ -179,6 +180,7 @@ SLUT_FN void slut_check_failed(const char *file, int line, const char *condition
 #define SLUT_EXPINT_SERIES_MAX_TERMS 40   /* e^a E_1(a), a < 1: power-series terms */
 #define SLUT_EXPINT_LEADING_ABOVE 1e300   /* e^a E_n(a) = 1/(a + n) above this (relative error n/a²) */
 #define SLUT_THETA_MAX_PANELS 20000       /* θ-integral panels */
+#define SLUT_IN_PLANE_TOLERANCE 1e-15     /* a unit-vector cosine this far below 0 is 0 (rounding) */
 
 /* π/2 split so that π/2 − v is exact for v near π/2 (Sterbenz, plus the tail). */
 #define SLUT_PIO2_HI 1.57079632679489655800e+00 /* double nearest π/2 */
