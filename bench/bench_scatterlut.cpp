@@ -322,10 +322,10 @@ std::vector<scatterlut::AirlightQuery> airlight_bench_queries(int which) {
         q.gamma_rad = 1e-3 + (M_PI - 2e-3) * unit(rng);
         q.length_m = q.distance_m * std::pow(10.0, -2.0 + 3.0 * unit(rng));
         if (which != 0) {
-            slut_airlight_geometry g;
-            slut_airlight_setup(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
-                                std::sin(q.gamma_rad), std::cos(q.gamma_rad), q.length_m, &g);
-            if ((which == 1) != (slut_airlight_theta_fits_one_panel(&g) != 0)) continue;
+            const slut_airlight_geometry g =
+                slut_airlight_setup(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
+                                    std::sin(q.gamma_rad), std::cos(q.gamma_rad), q.length_m);
+            if ((which == 1) != (slut_airlight_theta_fits_one_panel(g) != 0)) continue;
         }
         qs.push_back(q);
     }

@@ -150,8 +150,8 @@ TEST(AirlightRadiance, EightPointThetaRuleMatchesDirectQuadrature) {
         const scatterlut::AirlightQuery q{sigma_t, 0.0, 2.0, D, gamma, s};
         const double want = slut_ref::ref_airlight(q.sigma_s_per_m, q.sigma_a_per_m, 2.0, D, gamma, s);
         if (!(want > 1e-290)) continue;
-        slut_airlight_geometry g;
-        slut_airlight_setup(q.sigma_s_per_m, q.sigma_a_per_m, 2.0, D, std::sin(gamma), std::cos(gamma), s, &g);
+        const slut_airlight_geometry g =
+            slut_airlight_setup(q.sigma_s_per_m, q.sigma_a_per_m, 2.0, D, std::sin(gamma), std::cos(gamma), s);
         ASSERT_EQ(g.kind, 0);
         const double got = g.scale * (slut_airlight_theta_integral_rule(g.c, g.w2, g.dv, 0) / g.sin_gamma);
         const double err = rel_err(got, want);
@@ -185,10 +185,10 @@ TEST(AirlightRadiance, OnePanelThetaRuleMatchesDirectQuadrature) {
         const double half = 0.5 * gamma;
         double sin_half, cos_half;
         slut_sincos_half_angle(half, &sin_half, &cos_half);
-        slut_airlight_geometry g;
-        slut_airlight_setup_half_angle(sigma_t, 0.0, 2.0, D, sin_half, cos_half, slut_pio2_minus(half), s, &g);
+        const slut_airlight_geometry g =
+            slut_airlight_setup_half_angle(sigma_t, 0.0, 2.0, D, sin_half, cos_half, slut_pio2_minus(half), s);
         ASSERT_EQ(g.kind, 0);
-        if (!slut_airlight_theta_fits_one_panel(&g)) continue;
+        if (!slut_airlight_theta_fits_one_panel(g)) continue;
         const double want = slut_ref::ref_airlight(sigma_t, 0.0, 2.0, D, gamma, s);
         if (!(want > 1e-290)) continue;
         ++fitted;
@@ -528,13 +528,13 @@ TEST(AirlightTable, FloatTablePathMatchesTheGeneralLookup) {
         const double exact = scatterlut::airlight_radiance_exact(q);
         ASSERT_TRUE(std::isfinite(got) && got >= 0);
         EXPECT_LE(rel_err(got, exact), 1e-3) << "D=" << q.distance_m << " gamma=" << q.gamma_rad << " s=" << q.length_m;
-        slut_airlight_geometry g;
         const double half = 0.5 * q.gamma_rad;
-        slut_airlight_setup_half_angle(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
-                                       std::sin(half), std::cos(half), slut_pio2_minus(half), q.length_m, &g);
-        if (g.kind != 0 || slut_airlight_theta_fits_one_panel(&g) || !std::isfinite(q.length_m)) continue;
+        const slut_airlight_geometry g =
+            slut_airlight_setup_half_angle(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
+                                           std::sin(half), std::cos(half), slut_pio2_minus(half), q.length_m);
+        if (g.kind != 0 || slut_airlight_theta_fits_one_panel(g) || !std::isfinite(q.length_m)) continue;
         const double gs2 = table.scaled_tail(g.u, g.w2, g.a2), gs1 = table.scaled_tail(g.u, g.w1, g.a1);
-        const double want = slut_airlight_from_gs(&g, gs2, gs1);
+        const double want = slut_airlight_from_gs(g, gs2, gs1);
         worst = std::max(worst, rel_err(got, want));
         EXPECT_LE(rel_err(got, want), 1e-12) << "D=" << q.distance_m << " gamma=" << q.gamma_rad << " s=" << q.length_m;
         ++two_sample;
