@@ -456,7 +456,7 @@ SLUT_FN slut_airlight_geometry slut_airlight_setup(double sigma_s, double sigma_
  * (gl16 = 1). With 8 points (gl16 = 0, half the work) the same panels give: pole
  * ρ_B^{−16} ≤ 1.2e-16; decay, the n-point Gauss remainder of e^{−λθ} over λh ≤ 4,
  * (λh)^{2n} (n!)⁴/((2n + 1)((2n)!)³) ≤ 7e-14 at n = 8: ~1e-13 relative (≤ 1e-11 against
- * the Boost reference in tests/test_airlight, EightPointThetaRuleMatchesDirectQuadrature),
+ * the Boost reference in tests/runtime/test_airlight_table, EightPointThetaRuleMatchesDirectQuadrature),
  * far below any table's error (the table radiance's tolerance there is 1e-3). */
 SLUT_FN double slut_airlight_theta_integral_rule(double c, double w2, double dv, int gl16) {
     if (dv <= 0.0) return 0.0;
@@ -512,7 +512,7 @@ SLUT_CONST_ARRAY3(slut_gl6_w, 0.467913934572691047390, 0.360761573048138607570, 
  * Gauss remainder for λh ≤ 4 is ≤ 3e-9 (the bound quoted at the θ-rule), the poles
  * ρ_B^{−12} ≤ 1e-12; measured ≤ 8e-12 against slut_airlight_theta_integral on 20000 of the
  * bench's geometries and 1.3e-12 against Boost.Math on the 384 of 400 test geometries that
- * fit (tests/test_airlight, OnePanelThetaRuleMatchesDirectQuadrature; tolerance 1e-9). sin w2 = cos(γ/2), cos w2 = sin(γ/2). */
+ * fit (tests/runtime/test_airlight_table, OnePanelThetaRuleMatchesDirectQuadrature; tolerance 1e-9). sin w2 = cos(γ/2), cos w2 = sin(γ/2). */
 SLUT_FN int slut_airlight_theta_fits_one_panel(slut_airlight_geometry g) {
     return (g.kind == 0 && g.tan_dv <= 0.25 * g.w2 && g.c * g.tan_dv <= 4.0 * g.cos_half) ? 1 : 0;
 }

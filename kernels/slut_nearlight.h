@@ -545,7 +545,7 @@ SLUT_FN int slut_nl_E_lanes(double T, double g, double S, const double *r, int l
 /* E(T, g, r, S) = N/H ∈ (0, 1]: see slut_nl_E_lanes. Contract: 1e-10 relative; measured
  * ≤ 2e-14 against a Boost.Math reference on 20000 random points of T ∈ [1e-3, 100],
  * g ∈ [−0.999999, 1], r ∈ {0} ∪ [1e-6, 1e4], S ∈ {∞} ∪ [1e-6, 100]
- * (tests/test_nearlight_math.cpp). ~115 nodes per call on average, ≤ 550 there. */
+ * (tests/kernels/test_nearlight_math.cpp). ~115 nodes per call on average, ≤ 550 there. */
 SLUT_FN double slut_nl_E(double T, double g, double r, double S) {
     double E;
     slut_nl_E_lanes(T, g, S, &r, 1, &E, 1.0);

@@ -88,7 +88,7 @@ double log_gl_error_constant(int m) {
 // ~4e3 × the panel bound (at bounds 1e-10 … 1e-8; the pole term takes the ellipse through
 // the pole, where the integrand is unbounded, so it is optimistic), and 1e-4 keeps every
 // rung of the tolerance ladder 1e-3 … 1e-13 within its tolerance (`scatterlut report`,
-// tests/test_report.cpp).
+// tests/commands/test_report.cpp).
 constexpr double kPanelShareOfTolerance = 1e-4;
 
 // Everything panel_order needs that does not change along one interval.

@@ -1,7 +1,7 @@
 // The airlight GPU sampling snippets (scatterlut_airlight.{glsl,hlsl}, generated at build
 // time from tables/shaders/src and the SLUT_SHADER regions of kernels/; docs/SHADERS.md)
 // against the truth they must reproduce: the C++ runtime sampler (scatterlut::AirlightTable,
-// tables/src/airlight.cpp, itself tested against Boost.Math in test_airlight.cpp) on the
+// tables/src/airlight.cpp, itself tested against Boost.Math in runtime/test_airlight_table.cpp) on the
 // same table. The snippets run in single precision; these tests are what keeps them
 // from drifting:
 //   - ShaderSources: the GLSL and HLSL files agree outside their preludes, are ASCII, and their
