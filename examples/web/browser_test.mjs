@@ -74,7 +74,7 @@ function decodePng(bytes) {
 const cpp = decodePng(readFileSync(join(work, 'table.png')));
 const t0 = Date.now();
 // The page's waits guard against a hang, not a speed: SwiftShader renders the fixed view in
-// 75–175 s on a quiet 2-core machine (bench/README.md), and CTest's TIMEOUT (900 s) bounds it all.
+// 75–175 s on a quiet 2-core machine (`ctest -R WebDemoChromium -V` prints the phases), and CTest's TIMEOUT (900 s) bounds it all.
 const kPageWait_ms = 600000;
 const phase = (what) => console.log(`[${((Date.now() - t0) / 1000).toFixed(1)} s] ${what}`);
 
