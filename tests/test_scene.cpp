@@ -17,6 +17,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "generate_airlight.hpp"
+#include "generate_nearlight.hpp"
 #include "plan.hpp"
 #include "scene.hpp"
 #include "scatterlut/airlight.hpp"
@@ -342,15 +344,15 @@ distance_m = [0.01, 0.1]
     const scatterlut::ScenePlan p = scatterlut::derive_plan(scatterlut::parse_scene(text, "two.toml"), scatterlut::Storage::F32);
     ASSERT_EQ(p.tables.size(), 1u);
     const scatterlut::PlannedTable &t = p.tables[0];
-    EXPECT_EQ(t.kind, "near_light_E3");
+    EXPECT_STREQ(t.name(), "near_light_E3");
     ASSERT_EQ(t.requested_by.size(), 2u);
     EXPECT_EQ(t.requested_by[0].medium, "wax");
     EXPECT_EQ(t.requested_by[1].medium, "marble");
     // T = σ_t·l: wax 100·[0.01, 0.1] = [1, 10], marble 50·[0.01, 0.1] = [0.5, 5]: union [0.5, 10].
-    EXPECT_DOUBLE_EQ(t.near_light.T_min, 0.5);
-    EXPECT_DOUBLE_EQ(t.near_light.T_max, 10.0);
+    EXPECT_DOUBLE_EQ(t.plan_as<scatterlut::NearLightPlan>().T_min, 0.5);
+    EXPECT_DOUBLE_EQ(t.plan_as<scatterlut::NearLightPlan>().T_max, 10.0);
     // r = μ_l/μ_e ≤ 1/cos 60° = 2.
-    EXPECT_NEAR(t.near_light.r_max, 2.0, 1e-12);
+    EXPECT_NEAR(t.plan_as<scatterlut::NearLightPlan>().r_max, 2.0, 1e-12);
     EXPECT_DOUBLE_EQ(t.target_rel, 0.01);
 }
 
@@ -384,12 +386,12 @@ media = ["fog"]
 )";
     const scatterlut::ScenePlan p = scatterlut::derive_plan(scatterlut::parse_scene(text, "d.toml"), scatterlut::Storage::F32);
     ASSERT_EQ(p.tables.size(), 2u);
-    EXPECT_EQ(p.tables[0].kind, "airlight_F");
-    EXPECT_DOUBLE_EQ(p.tables[0].airlight.u_max, 100.0); // σ_t·D_max = 1·100, beyond the series onset
-    EXPECT_EQ(p.tables[1].kind, "near_light_E4");
-    EXPECT_DOUBLE_EQ(p.tables[1].near_light.S_min, 0.2);
-    EXPECT_NEAR(p.tables[1].near_light.S_max, 4.0, 1e-12); // 2 · 1 m / cos 60°
-    EXPECT_DOUBLE_EQ(p.tables[1].near_light.T_max, 200.0);
+    EXPECT_STREQ(p.tables[0].name(), "airlight_F");
+    EXPECT_DOUBLE_EQ(p.tables[0].plan_as<scatterlut::AirlightPlan>().u_max, 100.0); // σ_t·D_max = 1·100, beyond the series onset
+    EXPECT_STREQ(p.tables[1].name(), "near_light_E4");
+    EXPECT_DOUBLE_EQ(p.tables[1].plan_as<scatterlut::NearLightPlan>().S_min, 0.2);
+    EXPECT_NEAR(p.tables[1].plan_as<scatterlut::NearLightPlan>().S_max, 4.0, 1e-12); // 2 · 1 m / cos 60°
+    EXPECT_DOUBLE_EQ(p.tables[1].plan_as<scatterlut::NearLightPlan>().T_max, 200.0);
     ASSERT_EQ(p.notes.size(), 1u);
     EXPECT_NE(p.notes[0].find("closed form"), std::string::npos);
 }

@@ -10,17 +10,27 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scatterlut/airlight.hpp"
-#include "scatterlut/nearlight.hpp"
+#include "kinds/runtime_kind.hpp"
 #include "scatterlut/table.hpp"
 
 namespace scatterlut {
 
-// The tables eval samples, by kind; each query uses the first table that covers it.
+// The tables eval samples, in the order given; each query uses the first table of a kind
+// that answers it and covers it.
 struct EvalTables {
-    std::vector<AirlightTable> airlight;
-    std::vector<NearLightTable> near_light; // E3 and E4 tables
+    std::vector<std::shared_ptr<const RuntimeSampler>> samplers;
+
+    // Loads `table` through its kind's runtime sampler; throws LoadError naming `path` for a
+    // kind eval does not know.
+    void add(const std::string &path, Table table);
 };
+
+// The fields of a query, for the kinds' answers (answer_eval): a number (or "inf"), an
+// array of 3 numbers; std::invalid_argument naming the field when missing or malformed.
+double eval_number_field(const nlohmann::json &q, const char *name);
+void eval_vector_field(const nlohmann::json &q, const char *name, double *out);
+// Puts a number into an answer; a non-finite one is null, with a note eval_query adds.
+void eval_put(nlohmann::json &out, const char *name, double value);
 
 // Answers one parsed query: the query's fields plus the answer fields. Throws
 // std::invalid_argument with a message for a malformed query.

@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "measure_util.hpp"
+#include "reference_quadrature.hpp"
 #include "table_build.hpp"
 #include "scatterlut/io.hpp"
+#include "scatterlut/sampler.hpp"
 
 extern "C" {
 #include "slut_airlight.h"
@@ -333,7 +335,8 @@ Table generate_airlight_table(Device &device, const AirlightPlan &plan, const Pr
     if (progress) progress(1.0);
 
     // Accuracy: of the integration, of the storage type, and of sampling with the stored values.
-    t.accuracy.integration_max_rel = measure_airlight_integration(t, 400, 1);
+    t.accuracy.integration_max_rel =
+        measure_airlight_integration(t, airlight_measurement_nodes(t, 400, 1), IntegrationReference::FinerPanelRule);
     t.accuracy.storage_max_rel = storage_rounding_max_rel(t, t.storage);
     for (double &v : t.values) v = round_to_storage(v, t.storage);
     const SamplingStats s = measure_airlight_sampling(AirlightTable(t), 20000, 2);
@@ -345,22 +348,37 @@ Table generate_airlight_table(Device &device, const AirlightPlan &plan, const Pr
     return t;
 }
 
-double measure_airlight_integration(const Table &table, int nodes, uint64_t seed) {
+std::vector<NodeIndex> airlight_measurement_nodes(const Table &table, int nodes, uint64_t seed) {
     const slut_axis &au = table.axes[0].map;
     const slut_axis &aw = table.axes[1].map;
     std::mt19937_64 rng(seed);
-    std::vector<std::pair<int, int>> picks = {{0, 0}, {au.count - 1, 0}, {0, aw.count - 1}, {au.count - 1, aw.count - 1}};
+    std::vector<std::pair<int, int>> ij = {{0, 0}, {au.count - 1, 0}, {0, aw.count - 1}, {au.count - 1, aw.count - 1}};
     std::uniform_int_distribution<int> iu(0, au.count - 1), iw(0, aw.count - 1);
-    while (static_cast<int>(picks.size()) < nodes) picks.emplace_back(iu(rng), iw(rng));
-    std::vector<double> err(picks.size());
-    parallel_for(static_cast<int>(picks.size()), [&](int k) {
-        const auto [i, j] = picks[static_cast<size_t>(k)];
-        const double u = slut_axis_node(&au, i), w = slut_axis_node(&aw, j);
-        const double stored = std::exp(table.values[(static_cast<size_t>(j) * au.count + i) * table.channels.size()]);
-        const double reference = slut_gs_quadrature(u, w, 3.0);
-        err[static_cast<size_t>(k)] = std::fabs(stored - reference) / reference;
+    while (static_cast<int>(ij.size()) < nodes) ij.emplace_back(iu(rng), iw(rng));
+    std::vector<NodeIndex> picks(ij.size(), NodeIndex{});
+    for (size_t k = 0; k < ij.size(); ++k) {
+        picks[k][0] = static_cast<size_t>(ij[k].first);
+        picks[k][1] = static_cast<size_t>(ij[k].second);
+    }
+    return picks;
+}
+
+double measure_airlight_integration(const Table &table, const std::vector<NodeIndex> &nodes,
+                                    IntegrationReference reference) {
+    const slut_axis &au = table.axes[0].map;
+    const slut_axis &aw = table.axes[1].map;
+    std::vector<double> err(nodes.size());
+    parallel_for(static_cast<int>(nodes.size()), [&](int k) {
+        const NodeIndex &p = nodes[static_cast<size_t>(k)];
+        const double u = slut_axis_node(&au, static_cast<int>(p[0])), w = slut_axis_node(&aw, static_cast<int>(p[1]));
+        const double stored = decode(table.channels[0].encoding, table.values[table.index(p.data())]);
+        const double exact = reference == IntegrationReference::FinerPanelRule ? slut_gs_quadrature(u, w, 3.0)
+                                                                                : reference_scaled_tail(u, w);
+        err[static_cast<size_t>(k)] = std::fabs(stored - exact) / exact;
     });
-    return *std::max_element(err.begin(), err.end());
+    double worst = 0;
+    for (double e : err) worst = std::isnan(e) ? HUGE_VAL : std::max(worst, e);
+    return worst;
 }
 
 SamplingStats measure_airlight_sampling(const AirlightTable &table, int points, uint64_t seed) {

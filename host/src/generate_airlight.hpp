@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "measurement.hpp"
 #include "opencl_device.hpp"
 #include "scatterlut/airlight.hpp"
 #include "scatterlut/table.hpp"
@@ -29,13 +30,6 @@ struct AirlightPlan {
     Storage storage = Storage::F32;
 };
 
-struct SamplingStats {
-    double max_rel = 0, p99_rel = 0, median_rel = 0;
-    uint64_t points = 0;
-    double worst_u = 0, worst_w = 0; // where max_rel occurs
-    double worst_at[4] = {0, 0, 0, 0}; // near-light tables: (T, g, r, S) of max_rel
-};
-
 // A table with the plan's axes and no values yet.
 Table make_airlight_table_layout(const AirlightPlan &plan);
 
@@ -50,9 +44,14 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
 Table generate_airlight_table(Device &device, const AirlightPlan &plan, const Provenance &provenance,
                               const std::function<void(double)> &progress = {});
 
-// Relative error of G̃ at `nodes` nodes (all four corners included) against an
-// independent, finer quadrature pass (refine = 3) on the host.
-double measure_airlight_integration(const Table &table, int nodes, uint64_t seed);
+// The generator's nodes for its integration-error measurement: the four corners, then
+// random nodes from `seed` up to `nodes`.
+std::vector<NodeIndex> airlight_measurement_nodes(const Table &table, int nodes, uint64_t seed);
+
+// Relative error of the decoded G̃ at `nodes` against `reference`: the finer panel rule
+// (slut_gs_quadrature, refine = 3) or Boost.Math's Gauss–Kronrod (reference_quadrature.hpp).
+double measure_airlight_integration(const Table &table, const std::vector<NodeIndex> &nodes,
+                                    IntegrationReference reference);
 
 // Relative error of interpolated G̃ at `points` uniformly random off-node points (in the
 // unit coordinates of both axes) against quadrature.

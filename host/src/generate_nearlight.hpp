@@ -6,7 +6,7 @@
 #include <functional>
 #include <vector>
 
-#include "generate_airlight.hpp" // SamplingStats
+#include "measurement.hpp"
 #include "opencl_device.hpp"
 #include "scatterlut/nearlight.hpp"
 #include "scatterlut/table.hpp"
@@ -51,8 +51,13 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
 Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const Provenance &provenance,
                                const std::function<void(double)> &progress = {});
 
-// E at `nodes` random nodes against a finer, independent panel rule (refine = 2.5).
-double measure_nearlight_integration(const Table &table, int nodes, uint64_t seed);
+// The generator's nodes for its integration-error measurement: `nodes` random nodes from `seed`.
+std::vector<NodeIndex> nearlight_measurement_nodes(const Table &table, int nodes, uint64_t seed);
+
+// Relative error of the decoded E at `nodes` against `reference`: the finer panel rule
+// (slut_nl_E_lanes, refine = 2.5) or Boost.Math's Gauss–Kronrod (reference_quadrature.hpp).
+double measure_nearlight_integration(const NearLightTable &table, const std::vector<NodeIndex> &nodes,
+                                     IntegrationReference reference);
 
 // Interpolated E at random unit coordinates where E ≥ 1e-6, against quadrature (slut_nl_E).
 // In a 4-D table S is log-uniform in [S_min, S_max].

@@ -15,6 +15,7 @@
 #include <CLI/CLI.hpp>
 
 #include "eval.hpp"
+#include "exit_codes.hpp"
 #include "inspect.hpp"
 #include "validate.hpp"
 #include "report.hpp"
@@ -25,12 +26,6 @@
 
 namespace scatterlut {
 namespace {
-
-// Exit codes (README.md, "Exit codes"): 0 success; 1 a failure of the run or of what it
-// checks (device, accuracy, checksum, an inconsistent set, another run holding the output
-// directory); 2 usage or unreadable input (arguments, files, scenes, --device naming no device).
-constexpr int kExitFailure = 1;
-constexpr int kExitBadInput = 2;
 
 std::string g_command_line; // recorded in every table
 
@@ -90,12 +85,7 @@ struct EvalOptions {
 
 int run_eval(const EvalOptions &opt) {
     EvalTables tables;
-    for (const auto &path : opt.tables) {
-        Table t = load_table(path);
-        if (t.kind == kKindAirlightF) tables.airlight.emplace_back(std::move(t));
-        else if (t.kind == kKindNearLightE3 || t.kind == kKindNearLightE4) tables.near_light.emplace_back(std::move(t));
-        else throw LoadError(path + ": table kind '" + t.kind + "' is not one eval knows");
-    }
+    for (const auto &path : opt.tables) tables.add(path, load_table(path));
     eval_stream(std::cin, std::cout, tables);
     return 0; // bad lines are answered with {"error": …}, not an exit code
 }

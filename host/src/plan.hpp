@@ -1,16 +1,17 @@
 // scatterlut generator — the planner: from a scene to the tables it calls for
-// (docs/SCENES.md), with domains from the scene's ranges and resolutions chosen by
-// measurement (generate a trial table, measure its sampled error, refine).
+// (docs/SCENES.md), with domains from the scene's ranges (plan_derive.cpp, each kind's
+// add_demand/finish_plan) and resolutions chosen by measurement (plan_search.cpp: generate
+// a trial table, measure its sampled error, refine).
 #pragma once
 
+#include <any>
 #include <cstddef>
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "generate_airlight.hpp"
-#include "generate_nearlight.hpp"
+#include "kinds/table_kind.hpp"
 #include "opencl_device.hpp"
 #include "scene.hpp"
 #include "scatterlut/table.hpp"
@@ -35,11 +36,12 @@ struct PlanTrial {
 };
 
 struct PlannedTable {
-    std::string kind; // kKindAirlightF, kKindNearLightE3, kKindNearLightE4 (also the file stem)
+    const TableKind *kind = nullptr; // its name() is also the file stem
     std::vector<TableRequest> requested_by;
     std::vector<std::string> domain_notes; // where the domain goes beyond the scene's ranges, and why
-    AirlightPlan airlight;    // kind airlight_F: domain and (after the search) resolution
-    NearLightPlan near_light; // near_light_E3 / E4
+    // The kind's own plan (AirlightPlan, NearLightPlan, …): domain and (after the search)
+    // resolution. Only the kind reads it; tests reach it with plan_as<P>().
+    std::any plan;
     // Target on the table's own quantity (G̃ or E) that gives the scene's radiance error.
     double target_rel = 0;
     bool fixed_resolution = false; // the counts came from the command line: measured, not searched
@@ -50,6 +52,9 @@ struct PlannedTable {
     Table table;          // the chosen trial's table (after resolve_plan)
 
     const PlanTrial *chosen_trial() const { return chosen >= 0 ? &trials[static_cast<size_t>(chosen)] : nullptr; }
+    const char *name() const { return kind->name(); }
+    template <class P> P &plan_as() { return std::any_cast<P &>(plan); }
+    template <class P> const P &plan_as() const { return std::any_cast<const P &>(plan); }
 };
 
 struct ScenePlan {

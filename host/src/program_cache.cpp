@@ -1,5 +1,7 @@
 #include "program_cache.hpp"
 
+#include "text_format.hpp"
+
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -27,12 +29,6 @@ bool get_u64(const std::vector<uint8_t> &in, size_t *pos, uint64_t *v) {
     for (int i = 0; i < 8; ++i) *v |= static_cast<uint64_t>(in[*pos + static_cast<size_t>(i)]) << (8 * i);
     *pos += 8;
     return true;
-}
-
-std::string hex64(uint64_t v) {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-    return buf;
 }
 
 } // namespace

@@ -20,6 +20,7 @@
 #include "output_set.hpp"
 #include "plan.hpp"
 #include "scene.hpp"
+#include "text_format.hpp"
 #include "scatterlut/io.hpp"
 #include "version.hpp"
 
@@ -102,7 +103,7 @@ void print_text(const ScenePlan &plan) {
     for (const PlannedTable &t : plan.tables) {
         const PlanTrial &c = *t.chosen_trial();
         total += c.bytes;
-        std::printf("\n%s: %s, %.1f KiB\n", t.kind.c_str(), counts_text(c.counts, " x ").c_str(),
+        std::printf("\n%s: %s, %.1f KiB\n", t.name(), counts_text(c.counts, " x ").c_str(),
                     static_cast<double>(c.bytes) / 1024.0);
         for (const auto &r : t.requested_by)
             std::printf("  asked for by medium '%s' with light '%s': %s\n", r.medium.c_str(), r.light.c_str(),
@@ -110,8 +111,7 @@ void print_text(const ScenePlan &plan) {
         for (const auto &a : t.table.axes) std::printf("  axis %s\n", axis_domain(a).c_str());
         for (const auto &n : t.domain_notes) std::printf("  (%s)\n", n.c_str());
         std::printf("  target on the table's quantity: %.3g (%s, the strictest of the media asking)\n", t.target_rel,
-                    t.kind == kKindAirlightF ? "a third of the radiance error: the airlight is a difference of two samples"
-                                             : "the radiance error: L = sigma_s p I0 sigma_t H E, H exact");
+                    t.kind->target_reason());
         for (size_t i = 0; i < t.trials.size(); ++i) {
             const PlanTrial &tr = t.trials[i];
             std::printf("  %s trial %zu: %-20s max %.3g, p99 %.3g, integration %.2g, %.2f s\n",
@@ -139,8 +139,8 @@ nlohmann::json to_json(const ScenePlan &plan) {
     for (const PlannedTable &t : plan.tables) {
         const PlanTrial &c = *t.chosen_trial();
         json e;
-        e["kind"] = t.kind;
-        e["file_stem"] = t.kind;
+        e["kind"] = t.name();
+        e["file_stem"] = t.name();
         json req = json::array();
         for (const auto &r : t.requested_by) req.push_back({{"medium", r.medium}, {"light", r.light}, {"need", r.need}});
         e["requested_by"] = req;
@@ -262,12 +262,6 @@ private:
     int fd_ = -1;
 };
 
-std::string hex64_text(uint64_t x) {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(x));
-    return buf;
-}
-
 // The files of one run: every table encoded in memory, then each written to a hidden
 // temporary, the manifest last, and only then all renamed into place (AtomicFileSet).
 void write_output_set(const ScenePlan &plan, const std::string &out_dir, const std::string &command_line) {
@@ -279,14 +273,14 @@ void write_output_set(const ScenePlan &plan, const std::string &out_dir, const s
     std::vector<File> files;
     for (const PlannedTable &t : plan.tables) {
         if (format == "bin" || format == "both" || format == "all")
-            files.push_back({t.kind + ".slut", t.kind, "bin", encode_binary(t.table)});
+            files.push_back({std::string(t.name()) + ".slut", t.name(), "bin", encode_binary(t.table)});
         if (format == "exr" || format == "both" || format == "all") {
-            if (t.table.storage == Storage::F64) std::cout << t.kind << ": no EXR (f64 storage is binary only)\n";
-            else files.push_back({t.kind + ".exr", t.kind, "exr", encode_exr(t.table)});
+            if (t.table.storage == Storage::F64) std::cout << t.name() << ": no EXR (f64 storage is binary only)\n";
+            else files.push_back({std::string(t.name()) + ".exr", t.name(), "exr", encode_exr(t.table)});
         }
         if (format == "ktx2" || format == "all") {
-            if (t.table.storage == Storage::F64) std::cout << t.kind << ": no KTX2 (f64 storage is binary only)\n";
-            else files.push_back({t.kind + ".ktx2", t.kind, "ktx2", encode_ktx2(t.table)});
+            if (t.table.storage == Storage::F64) std::cout << t.name() << ": no KTX2 (f64 storage is binary only)\n";
+            else files.push_back({std::string(t.name()) + ".ktx2", t.name(), "ktx2", encode_ktx2(t.table)});
         }
     }
     nlohmann::json manifest;
@@ -299,7 +293,7 @@ void write_output_set(const ScenePlan &plan, const std::string &out_dir, const s
     nlohmann::json list = nlohmann::json::array();
     for (const File &f : files)
         list.push_back({{"name", f.name}, {"kind", f.kind}, {"format", f.format}, {"bytes", f.bytes.size()},
-                        {"fnv1a64", hex64_text(fnv1a64(f.bytes.data(), f.bytes.size()))}});
+                        {"fnv1a64", hex64(fnv1a64(f.bytes.data(), f.bytes.size()))}});
     manifest["files"] = list;
     const std::string text = manifest.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 
@@ -330,7 +324,7 @@ int run_generate(const GenerateOptions &opt, const std::string &command_line) {
     int missed = 0;
     for (const PlannedTable &t : plan.tables) {
         if (!t.reached) {
-            std::cerr << "scatterlut: " << (opt.fail_on_miss ? "error: " : "warning: ") << t.kind << ": " << t.verdict
+            std::cerr << "scatterlut: " << (opt.fail_on_miss ? "error: " : "warning: ") << t.name() << ": " << t.verdict
                       << "\n";
             ++missed;
         }

@@ -1,5 +1,7 @@
 #include "svg_plot.hpp"
 
+#include "text_format.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -26,12 +28,6 @@ std::string escape_xml(const std::string &s) {
         }
     }
     return out;
-}
-
-std::string fmt(const char *format, double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, format, v);
-    return buf;
 }
 
 // Pixel coordinate with one decimal: enough for a chart, and stable text.

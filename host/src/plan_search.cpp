@@ -1,3 +1,6 @@
+// scatterlut generator — the planner's resolution search: generate a trial table of each
+// planned kind, measure its sampled error, refine the node counts by the h² model per axis
+// (docs/SCENES.md).
 #include "plan.hpp"
 
 #include <algorithm>
@@ -7,22 +10,11 @@
 #include <limits>
 #include <numeric>
 
-extern "C" {
-#include "slut_airlight.h"
-}
+#include "kinds/derivation.hpp"
+#include "text_format.hpp"
 
 namespace scatterlut {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-// The airlight radiance is σ_s p I0 · 2/(D sin γ) · [a − b] with a = e^{−σ_t D}(π/2 − v2) G̃(A1, v2)
-// and b = e^{−σ_t(s+d(s))}(π/2 − v1) G̃(A1, v1); the runtime uses this difference only where
-// b ≤ a/2 (slut_airlight_from_gs; elsewhere the θ-integral). Relative errors ε on both G̃
-// samples give |δ(a − b)| ≤ ε(a + b) ≤ 3ε(a − b): the table must hold a third of the
-// radiance target. Near light: L = σ_s p I0 σ_t H E with H in closed form, so the
-// relative error of E is that of the radiance.
-constexpr double kAirlightRadiancePerTableError = 3.0;
 
 // The search: accept a trial whose measured maximum is within kAccept of the target (the
 // margin covers a worse point the 20000 random samples missed); refine towards kAim of it.
@@ -35,53 +27,7 @@ constexpr int kMaxTrials = 6;
 constexpr double kIntegrationShare = 0.01;
 // Each refinement changes an axis by at most these factors (the h² model is local).
 constexpr double kMaxGrowth = 3.0, kMaxShrink = 0.5;
-constexpr int kMinNodes = 8, kMaxNodesPerAxis = 8192;
-// Near-light measurements skip E < 1e-6 (generate_nearlight.cpp); so does the estimate.
-const double kNearLightLnFloor = std::log(1e-6);
-
-std::string fmt(const char *format, double x) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, format, x);
-    return buf;
-}
-
-// A range of positive numbers, widened when degenerate (an axis needs min < max).
-struct Span {
-    double lo = std::numeric_limits<double>::infinity(), hi = 0;
-    bool empty() const { return !(lo <= hi); }
-    void add(double a, double b) {
-        lo = std::min(lo, a);
-        hi = std::max(hi, b);
-    }
-    Span widened() const {
-        Span s = *this;
-        if (s.hi < 1.1 * s.lo) {
-            s.lo /= 1.05;
-            s.hi *= 1.05;
-        }
-        return s;
-    }
-};
-
-// The smallest u from which on the runtime's large-u series (slut_gs_large_u, used beyond
-// the table's u_max) holds half of `target`, measured against the quadrature at u, 1.3u and
-// 2u on 48 log-spaced w in [w_min, π/2] (its error falls with u like k!/u^k at the
-// smallest term). The airlight table must reach at least this u.
-double large_u_series_onset(double target, double w_min) {
-    for (double u = 1.0; u < 1e4; u *= 1.05) {
-        double worst = 0;
-        for (double uu : {u, 1.3 * u, 2.0 * u})
-            for (int i = 0; i < 48; ++i) {
-                const double w = w_min * std::pow(SLUT_PIO2_HI / w_min, i / 47.0);
-                const double exact = slut_gs_quadrature(uu, w, 1.0);
-                worst = std::max(worst, std::fabs(slut_gs_large_u(uu, w) - exact) / exact);
-            }
-        if (worst <= 0.5 * target) return u;
-    }
-    return 1e4;
-}
-
-int half(int n) { return std::max(kMinNodes, (n + 1) / 2); }
+constexpr int kMinNodes = kMinNodesPerAxis, kMaxNodesPerAxis = 8192;
 
 size_t bytes_of(const std::vector<int> &c, Storage storage) {
     size_t n = storage_bytes(storage);
@@ -121,12 +67,8 @@ std::vector<int> fit_budget(std::vector<int> c, Storage storage, size_t budget) 
 
 Table generate_trial(PlannedTable &t, Storage storage, Device &device, const Provenance &provenance,
                      const std::function<void(double)> &progress) {
-    if (t.kind == kKindAirlightF) {
-        t.airlight.storage = storage;
-        return generate_airlight_table(device, t.airlight, provenance, progress);
-    }
-    t.near_light.storage = storage;
-    return generate_nearlight_table(device, t.near_light, provenance, progress);
+    t.kind->set_storage(t.plan, storage);
+    return t.kind->generate(device, t.plan, provenance, progress);
 }
 
 std::string requests_text(const PlannedTable &t) {
@@ -151,7 +93,7 @@ void resolve_table(PlannedTable &t, const ScenePlan &plan, Device &device, const
     };
     for (int k = 0; k < kMaxTrials; ++k) {
         set_counts(t, counts);
-        const std::string label = t.kind + " trial " + std::to_string(k + 1) + " (" + counts_text(counts) + ")";
+        const std::string label = std::string(t.name()) + " trial " + std::to_string(k + 1) + " (" + counts_text(counts) + ")";
         const auto start = std::chrono::steady_clock::now();
         // No callback without a listener: the near-light kernel then runs in one launch.
         std::function<void(double)> trial_progress;
@@ -181,7 +123,7 @@ void resolve_table(PlannedTable &t, const ScenePlan &plan, Device &device, const
                 break;
             }
             const std::vector<double> e =
-                axis_interpolation_estimate(t.chosen == k ? best : table, t.kind == kKindAirlightF ? -HUGE_VAL : kNearLightLnFloor);
+                axis_interpolation_estimate(t.chosen == k ? best : table, t.kind->interpolation_ln_floor());
             std::vector<int> smaller = next_counts(counts, e, err, kAim * target);
             for (size_t a = 0; a < smaller.size(); ++a) smaller[a] = std::min(smaller[a], counts[a]);
             shrink_tried = true;
@@ -208,7 +150,7 @@ void resolve_table(PlannedTable &t, const ScenePlan &plan, Device &device, const
             }
         }
         const std::vector<double> e =
-            axis_interpolation_estimate(t.chosen == k ? best : table, t.kind == kKindAirlightF ? -HUGE_VAL : kNearLightLnFloor);
+            axis_interpolation_estimate(t.chosen == k ? best : table, t.kind->interpolation_ln_floor());
         std::vector<int> next = next_counts(counts, e, err, kAim * target);
         // Refining: no axis shrinks, and the axis the estimate blames most grows.
         for (size_t a = 0; a < next.size(); ++a) next[a] = std::max(next[a], counts[a]);
@@ -251,24 +193,9 @@ void resolve_table(PlannedTable &t, const ScenePlan &plan, Device &device, const
 
 } // namespace
 
-std::vector<int> counts_of(const PlannedTable &t) {
-    if (t.kind == kKindAirlightF) return {t.airlight.n_u, t.airlight.n_w};
-    std::vector<int> c = {t.near_light.n_T, t.near_light.n_g, t.near_light.n_r};
-    if (t.near_light.finite_thickness) c.push_back(t.near_light.n_S);
-    return c;
-}
+std::vector<int> counts_of(const PlannedTable &t) { return t.kind->counts(t.plan); }
 
-void set_counts(PlannedTable &t, const std::vector<int> &c) {
-    if (t.kind == kKindAirlightF) {
-        t.airlight.n_u = c[0];
-        t.airlight.n_w = c[1];
-        return;
-    }
-    t.near_light.n_T = c[0];
-    t.near_light.n_g = c[1];
-    t.near_light.n_r = c[2];
-    if (t.near_light.finite_thickness) t.near_light.n_S = c[3];
-}
+void set_counts(PlannedTable &t, const std::vector<int> &c) { t.kind->set_counts(t.plan, c); }
 
 std::string counts_text(const std::vector<int> &c, const char *separator) {
     std::string s;
@@ -298,120 +225,6 @@ std::vector<double> axis_interpolation_estimate(const Table &table, double ln_fl
         }
     }
     return out;
-}
-
-ScenePlan derive_plan(const Scene &scene, Storage storage, const AirlightOverrides &overrides) {
-    ScenePlan plan;
-    plan.scene = scene;
-    plan.storage = storage;
-    if (scene.media.empty()) {
-        plan.notes.push_back("no medium in the scene: nothing to tabulate");
-        return plan;
-    }
-    const double view = scene.view.max_view_angle_deg * kPi / 180.0;
-    const double light = scene.view.max_light_angle_deg * kPi / 180.0;
-
-    PlannedTable air, thick, slab;
-    air.kind = kKindAirlightF;
-    thick.kind = kKindNearLightE3;
-    slab.kind = kKindNearLightE4;
-    double u_max = 0;
-    Span T_thick, T_slab, S_slab;
-    // A table serves several media: it holds the strictest of their accepted errors.
-    double err_air = HUGE_VAL, err_thick = HUGE_VAL, err_slab = HUGE_VAL;
-    for (const SceneMedium &m : scene.media) {
-        const double sigma_t = m.sigma_t_per_m();
-        if (m.sigma_s_per_m == 0) {
-            plan.notes.push_back("medium '" + m.name + "': sigma_s = 0, nothing scatters light towards the viewer: no table");
-            continue;
-        }
-        bool lit = false;
-        for (const SceneLight &l : scene.lights) {
-            if (!Scene::lights_medium(l, m)) continue;
-            lit = true;
-            if (l.type == LightType::Directional) {
-                plan.notes.push_back("medium '" + m.name + "' lit by directional light '" + l.name +
-                                     "': the closed form serves (distant light, Gath 2008 eq. 5: L = albedo p L_in "
-                                     "(1 - exp(-sigma_t (1+c) s))/(1+c)); no table");
-                continue;
-            }
-            const double d_lo = l.distance_m.min, d_hi = l.distance_m.max;
-            if (m.viewer_inside) {
-                u_max = std::max(u_max, sigma_t * d_hi);
-                err_air = std::min(err_air, m.relative_error);
-                air.requested_by.push_back({m.name, l.name,
-                                            "viewer inside, light at D <= " + fmt("%g", d_hi) +
-                                                " m: u up to sigma_t*D_max = " + fmt("%.4g", sigma_t * d_hi)});
-                continue;
-            }
-            const std::string T_text = "T = sigma_t*l in [" + fmt("%.4g", sigma_t * d_lo) + ", " +
-                                       fmt("%.4g", sigma_t * d_hi) + "]";
-            if (m.thick) {
-                T_thick.add(sigma_t * d_lo, sigma_t * d_hi);
-                err_thick = std::min(err_thick, m.relative_error);
-                thick.requested_by.push_back({m.name, l.name, "thick, seen from outside: " + T_text});
-            }
-            if (m.has_thickness) {
-                // The path inside along the view ray: the thickness, longer by 1/cos at the
-                // largest view angle (a slab seen obliquely).
-                const double s_lo = sigma_t * m.thickness_m.min, s_hi = sigma_t * m.thickness_m.max / std::cos(view);
-                T_slab.add(sigma_t * d_lo, sigma_t * d_hi);
-                err_slab = std::min(err_slab, m.relative_error);
-                S_slab.add(s_lo, s_hi);
-                slab.requested_by.push_back({m.name, l.name,
-                                             "finite thickness, seen from outside: " + T_text +
-                                                 ", S = sigma_t*s in [" + fmt("%.4g", s_lo) + ", " + fmt("%.4g", s_hi) +
-                                                 "]"});
-            }
-        }
-        if (!lit) plan.notes.push_back("medium '" + m.name + "': no light lights it: no table");
-    }
-    if (!air.requested_by.empty()) {
-        AirlightPlan &a = air.airlight;
-        air.target_rel = err_air / kAirlightRadiancePerTableError;
-        if (overrides.w_min) a.w_min = *overrides.w_min;
-        // u up to σ_t·D_max, and at least to where the large-u series takes over at the target.
-        const double onset = large_u_series_onset(air.target_rel, a.w_min);
-        a.u_max = std::max(u_max, onset);
-        if (u_max < onset)
-            air.domain_notes.push_back("u_max raised from " + fmt("%.3g", u_max) + " to " + fmt("%.3g", onset) +
-                                       ": from there on the large-u series holds the target (measured)");
-        if (overrides.u_max) a.u_max = *overrides.u_max;
-        a.n_u = half(a.n_u);
-        a.n_w = half(a.n_w);
-        if (overrides.n_u || overrides.n_w) {
-            air.fixed_resolution = true;
-            a.n_u = overrides.n_u.value_or(AirlightPlan{}.n_u);
-            a.n_w = overrides.n_w.value_or(AirlightPlan{}.n_w);
-        }
-        plan.tables.push_back(air);
-    }
-    // Both near-light tables: g ≥ cos(view + light angle) (the eye and light directions both
-    // above the surface), r = μ_l/μ_e ≤ 1/cos(view angle).
-    auto near = [&](PlannedTable &t, const Span &T, const Span *S, double target) {
-        NearLightPlan &p = t.near_light;
-        p = default_near_light_plan(S != nullptr);
-        const Span Tw = T.widened();
-        p.T_min = std::max(Tw.lo, 1e-6);
-        p.T_max = Tw.hi;
-        p.g_min = std::max(p.g_min, std::cos(std::min(kPi, view + light)));
-        p.r_max = 1.0 / std::cos(view);
-        if (S) {
-            const Span Sw = S->widened();
-            p.S_min = std::max(Sw.lo, 1e-6);
-            p.S_max = Sw.hi;
-        }
-        p.n_T = half(p.n_T);
-        p.n_g = half(p.n_g);
-        p.n_r = half(p.n_r);
-        p.n_S = half(p.n_S);
-        t.target_rel = target;
-        plan.tables.push_back(t);
-    };
-    if (!thick.requested_by.empty()) near(thick, T_thick, nullptr, err_thick);
-    if (!slab.requested_by.empty()) near(slab, T_slab, &S_slab, err_slab);
-    if (plan.tables.empty() && plan.notes.empty()) plan.notes.push_back("no effect needs a table");
-    return plan;
 }
 
 void resolve_plan(ScenePlan &plan, Device &device, const Provenance &provenance,

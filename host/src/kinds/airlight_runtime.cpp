@@ -1,0 +1,69 @@
+// The airlight F table's runtime facet (kinds/runtime_kind.hpp): its sampler, AirlightTable
+// (tables/src/airlight.cpp), and the eval quantities F and airlight. Its descriptor:
+// kinds/airlight_kind.cpp.
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "eval.hpp"
+#include "kinds/runtime_kind.hpp"
+#include "scatterlut/airlight.hpp"
+
+extern "C" {
+#include "slut_airlight.h"
+}
+
+namespace scatterlut {
+namespace {
+
+class AirlightRuntime final : public RuntimeKind {
+public:
+    const char *name() const override { return kKindAirlightF; }
+    std::shared_ptr<const RuntimeSampler> make_sampler(Table table) const override {
+        return std::make_shared<SamplerOf<AirlightTable>>(std::move(table));
+    }
+    std::vector<std::string> eval_quantities() const override { return {"F", "airlight"}; }
+    void answer_eval(const std::string &quantity, const nlohmann::json &q, nlohmann::json &out,
+                     const EvalTables &tables) const override {
+        const AirlightTable *table =
+            first_runtime<AirlightTable>(tables.samplers, [](const AirlightTable &) { return true; });
+        if (quantity == "F") {
+            const double u = eval_number_field(q, "u"), v = eval_number_field(q, "v");
+            if (!(u >= 0.0) || !std::isfinite(u)) throw std::invalid_argument("u must be finite and >= 0");
+            if (!(v >= 0.0) || !(v <= 1.5707963267948968)) throw std::invalid_argument("v must lie in [0, pi/2]");
+            eval_put(out, "exact", slut_F_quadrature(u, v));
+            eval_put(out, "tail", slut_tail_quadrature(u, v));
+            if (!table) {
+                out["table"] = nullptr;
+                out["table_tail"] = nullptr;
+            } else {
+                eval_put(out, "table", table->F(u, v));
+                eval_put(out, "table_tail", table->tail(u, v));
+            }
+            return;
+        }
+        AirlightQuery a; // quantity "airlight"
+        a.sigma_s_per_m = eval_number_field(q, "sigma_s");
+        a.sigma_a_per_m = eval_number_field(q, "sigma_a");
+        a.intensity_W_per_sr = eval_number_field(q, "intensity");
+        a.distance_m = eval_number_field(q, "distance");
+        a.gamma_rad = eval_number_field(q, "gamma");
+        a.length_m = eval_number_field(q, "length");
+        const double exact = airlight_radiance_exact(a); // validates the query
+        eval_put(out, "exact", exact);
+        const bool through_light = a.gamma_rad == 0.0 && a.length_m >= a.distance_m;
+        if (through_light) out["note"] = "diverges: the view ray passes through the light";
+        if (!table) out["table"] = nullptr;
+        else eval_put(out, "table", table->radiance(a));
+    }
+};
+
+} // namespace
+
+const RuntimeKind &airlight_runtime_kind() {
+    static const AirlightRuntime kind;
+    return kind;
+}
+
+} // namespace scatterlut

@@ -1,0 +1,216 @@
+// The near-light E tables (Gath 2008 §4.2): ln E(T, g, r) for thick media (kind E3, S = ∞)
+// and ln E/B(T, g, r, S) for slabs of finite optical thickness (kind E4): one class,
+// parameterized by slab / thick, registered twice. Their generator: generate_nearlight.cpp;
+// their runtime: tables/src/nearlight.cpp.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include "generate_nearlight.hpp"
+#include "kinds/derivation.hpp"
+#include "measure_util.hpp"
+#include "plan.hpp"
+#include "scene_queries.hpp"
+#include "text_format.hpp"
+#include "scatterlut/nearlight.hpp"
+
+extern "C" {
+#include "slut_nearlight.h"
+}
+
+namespace scatterlut {
+
+// kinds/nearlight_runtime.cpp
+const RuntimeKind &near_light_thick_runtime_kind();
+const RuntimeKind &near_light_slab_runtime_kind();
+
+namespace {
+
+// Measurements skip E < 1e-6 (generate_nearlight.cpp); so do the search's estimate and the
+// report's queries.
+constexpr double kEFloor = 1e-6;
+
+// What the scene's pairs ask: T (and for slabs S) ranges, at the strictest error.
+struct Demand {
+    Span T, S;
+    double relative_error = HUGE_VAL;
+};
+
+const NearLightPlan &plan_of(const std::any &plan) { return std::any_cast<const NearLightPlan &>(plan); }
+NearLightPlan &plan_of(std::any &plan) { return std::any_cast<NearLightPlan &>(plan); }
+const std::vector<NearLightQuery> &queries_of(const RadianceQueries &q) {
+    return std::any_cast<const std::vector<NearLightQuery> &>(q.queries);
+}
+
+class NearLightKind final : public TableKind {
+public:
+    explicit NearLightKind(bool finite_thickness) : finite_(finite_thickness) {}
+
+    const RuntimeKind &runtime() const override {
+        return finite_ ? near_light_slab_runtime_kind() : near_light_thick_runtime_kind();
+    }
+
+    void add_demand(const Scene &scene, const SceneMedium &m, const SceneLight &l, std::any &state,
+                    PlannedTable &t) const override {
+        if (m.viewer_inside || !(finite_ ? m.has_thickness : m.thick)) return;
+        if (!state.has_value()) state = Demand{};
+        Demand &d = std::any_cast<Demand &>(state);
+        const double sigma_t = m.sigma_t_per_m(), d_lo = l.distance_m.min, d_hi = l.distance_m.max;
+        const std::string T_text = "T = sigma_t*l in [" + fmt("%.4g", sigma_t * d_lo) + ", " +
+                                   fmt("%.4g", sigma_t * d_hi) + "]";
+        d.T.add(sigma_t * d_lo, sigma_t * d_hi);
+        d.relative_error = std::min(d.relative_error, m.relative_error);
+        if (!finite_) {
+            t.requested_by.push_back({m.name, l.name, "thick, seen from outside: " + T_text});
+            return;
+        }
+        // The path inside along the view ray: the thickness, longer by 1/cos at the largest
+        // view angle (a slab seen obliquely).
+        const double view = scene.view.max_view_angle_deg * SLUT_PI / 180.0;
+        const double s_lo = sigma_t * m.thickness_m.min, s_hi = sigma_t * m.thickness_m.max / std::cos(view);
+        d.S.add(s_lo, s_hi);
+        t.requested_by.push_back({m.name, l.name,
+                                  "finite thickness, seen from outside: " + T_text + ", S = sigma_t*s in [" +
+                                      fmt("%.4g", s_lo) + ", " + fmt("%.4g", s_hi) + "]"});
+    }
+
+    // g ≥ cos(view + light angle) (the eye and light directions both above the surface),
+    // r = μ_l/μ_e ≤ 1/cos(view angle).
+    void finish_plan(const Scene &scene, const std::any &state, const AirlightOverrides &,
+                     PlannedTable &t) const override {
+        const Demand &d = std::any_cast<const Demand &>(state);
+        const double view = scene.view.max_view_angle_deg * SLUT_PI / 180.0;
+        const double light = scene.view.max_light_angle_deg * SLUT_PI / 180.0;
+        NearLightPlan p = default_near_light_plan(finite_);
+        const Span Tw = d.T.widened();
+        p.T_min = std::max(Tw.lo, 1e-6);
+        p.T_max = Tw.hi;
+        p.g_min = std::max(p.g_min, std::cos(std::min(SLUT_PI, view + light)));
+        p.r_max = 1.0 / std::cos(view);
+        if (finite_) {
+            const Span Sw = d.S.widened();
+            p.S_min = std::max(Sw.lo, 1e-6);
+            p.S_max = Sw.hi;
+        }
+        p.n_T = half_count(p.n_T);
+        p.n_g = half_count(p.n_g);
+        p.n_r = half_count(p.n_r);
+        p.n_S = half_count(p.n_S);
+        t.target_rel = d.relative_error;
+        t.plan = p;
+    }
+
+    const char *target_reason() const override { return "the radiance error: L = sigma_s p I0 sigma_t H E, H exact"; }
+
+    std::vector<int> counts(const std::any &plan) const override {
+        const NearLightPlan &p = plan_of(plan);
+        std::vector<int> c = {p.n_T, p.n_g, p.n_r};
+        if (p.finite_thickness) c.push_back(p.n_S);
+        return c;
+    }
+    void set_counts(std::any &plan, const std::vector<int> &c) const override {
+        NearLightPlan &p = plan_of(plan);
+        p.n_T = c[0];
+        p.n_g = c[1];
+        p.n_r = c[2];
+        if (p.finite_thickness) p.n_S = c[3];
+    }
+    void set_storage(std::any &plan, Storage storage) const override { plan_of(plan).storage = storage; }
+    double integration_tolerance(const std::any &plan) const override { return plan_of(plan).integration_tolerance; }
+    double interpolation_ln_floor() const override { return std::log(kEFloor); }
+
+    Table layout(const std::any &plan, double tolerance) const override {
+        NearLightPlan p = plan_of(plan);
+        p.integration_tolerance = tolerance;
+        return make_nearlight_table_layout(p);
+    }
+    std::vector<double> integrate(Device &device, const Table &layout, double tolerance) const override {
+        return integrate_nearlight_ln_E(device, layout, {}, tolerance);
+    }
+    Table generate(Device &device, const std::any &plan, const Provenance &provenance,
+                   const std::function<void(double)> &progress) const override {
+        return generate_nearlight_table(device, plan_of(plan), provenance, progress);
+    }
+
+    std::vector<NodeIndex> generator_nodes(const Table &table, int nodes, uint64_t seed) const override {
+        return nearlight_measurement_nodes(table, nodes, seed);
+    }
+    double integration_error(const RuntimeSampler &sampler, const std::vector<NodeIndex> &nodes,
+                             IntegrationReference reference) const override {
+        return measure_nearlight_integration(dynamic_cast<const SamplerOf<NearLightTable> &>(sampler).runtime, nodes, reference);
+    }
+    SamplingStats sampling_error(const RuntimeSampler &sampler, int points, uint64_t seed) const override {
+        return measure_nearlight_sampling(dynamic_cast<const SamplerOf<NearLightTable> &>(sampler).runtime, points, seed);
+    }
+
+    RadianceQueries radiance_queries(const Scene &scene, const std::any &, size_t count,
+                                     uint64_t seed) const override {
+        std::vector<NearLightQuery> all = sample_near_light_queries(scene, finite_, count, seed), kept;
+        std::vector<double> exact(all.size()), E(all.size());
+        parallel_for(static_cast<int>(all.size()), [&](int i) {
+            const NearLightQuery &q = all[static_cast<size_t>(i)];
+            const NearLightParams p = near_light_params(q);
+            E[static_cast<size_t>(i)] = p.light_below ? 0.0 : slut_nl_E(p.T, p.g, p.r, p.S);
+            exact[static_cast<size_t>(i)] = near_light_radiance_exact(q);
+        });
+        RadianceQueries s;
+        for (size_t i = 0; i < all.size(); ++i)
+            if (E[i] >= kEFloor && std::isfinite(exact[i]) && exact[i] > 0) {
+                kept.push_back(all[i]);
+                s.exact.push_back(exact[i]);
+            }
+        s.queries = std::move(kept);
+        s.description = describe_near_light_queries(finite_) + "; queries with E < 1e-6 left out";
+        return s;
+    }
+
+    std::vector<RuntimeMethod> runtime_methods(const Table &table, const RadianceQueries &qs) const override {
+        const std::vector<NearLightQuery> *q = &queries_of(qs);
+        return {{"exact", "quadrature per call (near_light_radiance_exact)", true,
+                 [q](size_t k) { return near_light_radiance_exact((*q)[k]); }},
+                {"table", "one sample of the planned E table (NearLightTable::radiance)", false, table_radiance(table, qs)},
+                {"thin", "thin-medium closed form, Gath 2008 §4.2 (near_light_radiance_thin)", false,
+                 [q](size_t k) { return near_light_radiance_thin((*q)[k]); }},
+                {"distant", "distant-light limit, Gath 2008 eq. 5 (near_light_radiance_distant)", false,
+                 [q](size_t k) { return near_light_radiance_distant((*q)[k]); }}};
+    }
+    std::function<double(size_t)> table_radiance(const Table &table, const RadianceQueries &qs) const override {
+        auto near = std::make_shared<NearLightTable>(table);
+        const std::vector<NearLightQuery> *q = &queries_of(qs);
+        return [near, q](size_t k) { return near->radiance((*q)[k]); };
+    }
+    std::function<double()> lookup_loop(const Table &table, const std::vector<double> &p, size_t count) const override {
+        auto near = std::make_shared<NearLightTable>(table);
+        const std::vector<double> *params = &p;
+        const size_t n = table.axes.size();
+        return [near, params, count, n] {
+            const std::vector<double> &pp = *params;
+            const double inf = HUGE_VAL;
+            double sum = 0;
+            for (size_t i = 0; i < count; ++i)
+                sum += near->E(pp[n * i], pp[n * i + 1], pp[n * i + 2], n == 4 ? pp[n * i + 3] : inf);
+            return sum;
+        };
+    }
+    const char *runtime_class() const override { return "NearLightTable"; }
+    std::string methods_note() const override { return ""; }
+
+private:
+    bool finite_;
+};
+
+} // namespace
+
+const TableKind &near_light_thick_table_kind() {
+    static const NearLightKind kind(false);
+    return kind;
+}
+
+const TableKind &near_light_slab_table_kind() {
+    static const NearLightKind kind(true);
+    return kind;
+}
+
+} // namespace scatterlut

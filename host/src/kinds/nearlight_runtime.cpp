@@ -1,0 +1,97 @@
+// The near-light E tables' runtime facet (kinds/runtime_kind.hpp): their sampler,
+// NearLightTable (tables/src/nearlight.cpp), and the eval quantities N and near_light (one
+// class for E3 and E4, registered twice). Their descriptor: kinds/nearlight_kind.cpp.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "eval.hpp"
+#include "kinds/runtime_kind.hpp"
+#include "scatterlut/nearlight.hpp"
+
+extern "C" {
+#include "slut_nearlight.h"
+}
+
+namespace scatterlut {
+namespace {
+
+// The first near-light table (E3 or E4) covering (T, g, r, S), or null.
+const NearLightTable *covering(const EvalTables &tables, double T, double g, double r, double S) {
+    return first_runtime<NearLightTable>(tables.samplers,
+                                         [&](const NearLightTable &t) { return t.covers(T, g, r, S); });
+}
+
+bool any_near_light(const EvalTables &tables) {
+    return first_runtime<NearLightTable>(tables.samplers, [](const NearLightTable &) { return true; }) != nullptr;
+}
+
+class NearLightRuntime final : public RuntimeKind {
+public:
+    explicit NearLightRuntime(bool finite_thickness) : finite_(finite_thickness) {}
+    const char *name() const override { return finite_ ? kKindNearLightE4 : kKindNearLightE3; }
+    std::shared_ptr<const RuntimeSampler> make_sampler(Table table) const override {
+        return std::make_shared<SamplerOf<NearLightTable>>(std::move(table));
+    }
+    std::vector<std::string> eval_quantities() const override { return {"N", "near_light"}; }
+    void answer_eval(const std::string &quantity, const nlohmann::json &q, nlohmann::json &out,
+                     const EvalTables &tables) const override {
+        if (quantity == "N") {
+            const double T = eval_number_field(q, "T"), g = eval_number_field(q, "g"), r = eval_number_field(q, "r"),
+                         S = eval_number_field(q, "S");
+            if (!(T > 0.0) || !std::isfinite(T)) throw std::invalid_argument("T must be finite and > 0");
+            if (!(g >= -1.0 && g <= 1.0)) throw std::invalid_argument("g must lie in [-1, 1]");
+            if (!(r >= 0.0)) throw std::invalid_argument("r must be >= 0");
+            if (!(S >= 0.0)) throw std::invalid_argument("S must be >= 0 (or \"inf\")");
+            const double H = slut_nl_H(T, g, S), E = slut_nl_E(T, g, r, S);
+            eval_put(out, "exact", (H > 0.0 && std::isfinite(H)) ? E * H : H);
+            eval_put(out, "E", E);
+            eval_put(out, "H", H);
+            const NearLightTable *t = covering(tables, T, g, r, S);
+            if (t) eval_put(out, "table", t->E(T, g, r, S) * H);
+            else out["table"] = nullptr;
+            eval_put(out, "approx", slut_nl_N_thin(T, g, r, S));
+            return;
+        }
+        NearLightQuery n; // quantity "near_light"
+        n.sigma_s_per_m = eval_number_field(q, "sigma_s");
+        n.sigma_a_per_m = eval_number_field(q, "sigma_a");
+        n.intensity_W_per_sr = eval_number_field(q, "intensity");
+        eval_vector_field(q, "normal", n.normal);
+        eval_vector_field(q, "eye_dir", n.eye_dir);
+        eval_vector_field(q, "light_pos", n.light_rel_m);
+        n.length_m = eval_number_field(q, "length");
+        if (q.contains("eta")) n.eta = eval_number_field(q, "eta");
+        if (q.contains("fresnel")) {
+            if (!q.at("fresnel").is_boolean()) throw std::invalid_argument("field \"fresnel\" must be true or false");
+            n.fresnel = q.at("fresnel").get<bool>();
+        }
+        eval_put(out, "exact", near_light_radiance_exact(n)); // validates the query
+        const NearLightParams p = near_light_params(n);
+        const NearLightTable *t = p.light_below ? nullptr : covering(tables, p.T, p.g, p.r, p.S);
+        if (t) eval_put(out, "table", t->radiance(n));
+        else if (p.light_below && any_near_light(tables)) out["table"] = 0.0;
+        else out["table"] = nullptr;
+        eval_put(out, "approx", near_light_radiance_thin(n));
+        eval_put(out, "distant", near_light_radiance_distant(n));
+    }
+
+private:
+    bool finite_;
+};
+
+} // namespace
+
+const RuntimeKind &near_light_thick_runtime_kind() {
+    static const NearLightRuntime kind(false);
+    return kind;
+}
+
+const RuntimeKind &near_light_slab_runtime_kind() {
+    static const NearLightRuntime kind(true);
+    return kind;
+}
+
+} // namespace scatterlut

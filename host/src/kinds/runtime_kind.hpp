@@ -1,0 +1,65 @@
+// scatterlut generator — the runtime facet of a table kind: its name, its runtime sampler and
+// the eval queries it answers. It depends on the runtime library alone (no OpenCL, no
+// generator), so that eval links without the device (the eval fuzzer builds it so); the
+// kind's descriptor (table_kind.hpp) holds the rest and points to its facet.
+//
+// The facets are listed once, in kinds/runtime_registry.cpp; find_runtime_kind() is the one
+// place where a kind's name (Table::kind, the file stem) is compared with a string.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "scatterlut/table.hpp"
+
+namespace scatterlut {
+
+struct EvalTables;
+
+// A kind's runtime sampler over a loaded table, opaque to all but its kind.
+struct RuntimeSampler {
+    virtual ~RuntimeSampler() = default;
+    virtual const Table &table() const = 0;
+};
+
+// The sampler of the runtime class R (AirlightTable, NearLightTable, …), which checks the
+// table in its constructor (std::invalid_argument) and keeps it.
+template <class R> struct SamplerOf final : RuntimeSampler {
+    explicit SamplerOf(Table t) : runtime(std::move(t)) {}
+    const Table &table() const override { return runtime.table(); }
+    R runtime;
+};
+
+// The first loaded table whose sampler is a SamplerOf<R> and that `accepts`, or nullptr.
+template <class R, class Accept>
+const R *first_runtime(const std::vector<std::shared_ptr<const RuntimeSampler>> &samplers, Accept accepts) {
+    for (const auto &s : samplers)
+        if (const auto *r = dynamic_cast<const SamplerOf<R> *>(s.get()))
+            if (accepts(r->runtime)) return &r->runtime;
+    return nullptr;
+}
+
+class RuntimeKind {
+public:
+    virtual ~RuntimeKind() = default;
+    // Table::kind of its tables and their file stem (kKindAirlightF, …).
+    virtual const char *name() const = 0;
+    // The runtime sampler of a table of this kind; throws std::invalid_argument when the
+    // table is not one (version, axes, channels).
+    virtual std::shared_ptr<const RuntimeSampler> make_sampler(Table table) const = 0;
+    // The "quantity" values of eval queries this kind answers.
+    virtual std::vector<std::string> eval_quantities() const = 0;
+    // Answers one query of one of its quantities into `out`, using the loaded tables it can.
+    virtual void answer_eval(const std::string &quantity, const nlohmann::json &query, nlohmann::json &out,
+                             const EvalTables &tables) const = 0;
+};
+
+// Every kind's runtime facet, in the registry's order.
+const std::vector<const RuntimeKind *> &runtime_kinds();
+// The facet whose name() is `name`, or nullptr.
+const RuntimeKind *find_runtime_kind(const std::string &name);
+
+} // namespace scatterlut

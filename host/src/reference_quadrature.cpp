@@ -1,0 +1,111 @@
+#include "reference_quadrature.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+
+namespace scatterlut {
+namespace {
+
+using real = long double;
+constexpr real kTolerance = 1e-15L;
+constexpr unsigned kMaxDepth = 15;
+
+// ∫_a^b f by 61-point Gauss–Kronrod on [0, 1] after scaling: Boost compares the error
+// estimate of the unscaled rule with tol·|estimate|, so a narrow unscaled piece would recurse
+// to the maximum depth.
+template <class F> real piece(const F &f, real a, real b) {
+    if (!(b > a)) return 0;
+    const real len = b - a;
+    auto scaled = [&](real x) { return len * f(a + len * x); };
+    real error = 0;
+    return boost::math::quadrature::gauss_kronrod<real, 61>::integrate(scaled, real(0), real(1), kMaxDepth,
+                                                                       kTolerance, &error);
+}
+
+// ∫_a^∞ f with t = a + L x/(1 − x), dt = L dx/(1 − x)²: L the scale of the decay.
+template <class F> real tail(const F &f, real a, real scale) {
+    auto mapped = [&](real x) {
+        if (x >= 1) return real(0);
+        const real one_minus = 1 - x;
+        const real v = scale * f(a + scale * x / one_minus) / (one_minus * one_minus);
+        return std::isfinite(v) ? v : real(0);
+    };
+    real error = 0;
+    return boost::math::quadrature::gauss_kronrod<real, 61>::integrate(mapped, real(0), real(1), kMaxDepth,
+                                                                       kTolerance, &error);
+}
+
+// ∫_0^end f (end may be +∞) over the pieces between the break points inside (0, end), the
+// last piece of an infinite range mapped with `tail_scale` (0: the last break point).
+template <class F> real integrate(const F &f, std::vector<real> breaks, real end, real tail_scale) {
+    const bool infinite = !(end < std::numeric_limits<real>::max());
+    std::vector<real> kept = {0};
+    for (real p : breaks)
+        if (p > 0 && std::isfinite(p) && (infinite || p < end)) kept.push_back(p);
+    if (!infinite) kept.push_back(end);
+    std::sort(kept.begin(), kept.end());
+    kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+    real sum = 0;
+    for (size_t i = 0; i + 1 < kept.size(); ++i) sum += piece(f, kept[i], kept[i + 1]);
+    if (infinite) sum += tail(f, kept.back(), tail_scale > 0 ? tail_scale : std::max(kept.back(), real(1)));
+    return sum;
+}
+
+// Break points from `from` growing by 4× up to `to`.
+void geometric(std::vector<real> &breaks, real from, real to) {
+    for (real p = from; p < to && breaks.size() < 4096; p *= 4) breaks.push_back(p);
+}
+
+} // namespace
+
+double reference_scaled_tail(double u_in, double w_in) {
+    const real u = u_in, w = w_in;
+    const real tau = std::cos(w) / std::sin(w);
+    // Scales: the Lorentzian 1/(1 + (τ + y)²) varies over 1 + τ, e^{−u y} over 1/u.
+    const real lorentz = 1 + tau, decay = u > 0 ? 1 / u : std::numeric_limits<real>::infinity();
+    std::vector<real> breaks;
+    const real smallest = std::min(lorentz, decay) / 64;
+    const real largest = u > 0 ? 48 * decay : 64 * lorentz;
+    geometric(breaks, smallest, largest);
+    auto f = [=](real y) { const real x = tau + y; return std::exp(-u * y) / (1 + x * x); };
+    // Beyond 48/u the integrand is below e^{−48}: its tail decays over 1/u; with u = 0 it
+    // decays like 1/y², mapped with the last break point as the scale.
+    const real integral = integrate(f, breaks, std::numeric_limits<real>::infinity(), u > 0 ? decay : 0);
+    return static_cast<double>(integral / w);
+}
+
+double reference_near_light_E(double T_in, double g_in, double r_in, double S_in) {
+    const real T = T_in, g = g_in, r = r_in;
+    const real S = std::isinf(S_in) ? std::numeric_limits<real>::infinity() : real(S_in);
+    const real sg2 = (1 - std::fabs(g)) * (1 + std::fabs(g)); // 1 − g² without cancellation
+    const real c = T * r;                                      // the boundary layer t ~ T r of t/(t + T r)
+    auto h2 = [=](real t) { const real d = t + T * g; return d * d + T * T * sg2; };
+    auto n = [=](real t) {
+        const real hh = h2(t);
+        const real share = r > 0 ? (std::isinf(c) ? real(0) : t / (t + c)) : real(1);
+        return std::exp(-t - std::sqrt(hh) * share) / hh;
+    };
+    auto h = [=](real t) { return 1 / h2(t); };
+    const real span = std::min(S, 4 * T + 200);
+    std::vector<real> breaks;
+    geometric(breaks, T / 4096, std::min(span, 64 * T)); // 1/ĥ² near t = 0 varies over T
+    if (c > 0 && std::isfinite(c)) geometric(breaks, c / 256, std::min(span, 256 * c));
+    if (g < 0) { // the peak of 1/ĥ² at t* = −gT, of width T √(1 − g²)
+        const real t_star = -T * g, width = T * std::sqrt(sg2);
+        breaks.push_back(t_star);
+        for (real off = width; off < t_star + span && breaks.size() < 4096; off *= 4) {
+            breaks.push_back(t_star - off);
+            breaks.push_back(t_star + off);
+        }
+    }
+    geometric(breaks, real(1) / 16, std::min(span, real(256))); // e^{−t}
+    const real N = integrate(n, breaks, S, 1);
+    const real H = integrate(h, breaks, S, 0); // ĥ^{−2} decays like 1/t²
+    return static_cast<double>(N / H);
+}
+
+} // namespace scatterlut

@@ -1,0 +1,19 @@
+// scatterlut generator — reference values by a rule independent of the kernels: Boost.Math
+// adaptive 61-point Gauss–Kronrod quadrature (long double) of the physical integrals, split
+// at break points placed by the integrands' scales. `validate` re-measures table nodes with
+// these (IntegrationReference::IndependentGaussKronrod); the kernels' panel rules
+// (kernels/slut_*.h) are not used.
+#pragma once
+
+namespace scatterlut {
+
+// G̃(u, w) = (1/w) ∫_0^∞ e^{−u y} / (1 + (τ + y)²) dy, τ = cot w: the airlight's scaled tail
+// (Sun et al. 2005, F(u, v) with w = π/2 − v), u ≥ 0, w ∈ (0, π/2]. Relative accuracy ~1e-15.
+double reference_scaled_tail(double u, double w);
+
+// The near-light E = N/H of Gath 2008 §4.2 (docs/PHYSICS.md §1.2): with ĥ² = t² + T² + 2tTg,
+//   N = ∫_0^S exp(−t − ĥ(t)·t/(t + T r)) / ĥ² dt,   H = ∫_0^S ĥ^{−2} dt,
+// T > 0, g ∈ [−1, 1], r ≥ 0 (or +∞), S > 0 (or +∞). Relative accuracy ~1e-14.
+double reference_near_light_E(double T, double g, double r, double S);
+
+} // namespace scatterlut
