@@ -9,6 +9,7 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "scatterlut/airlight_hg.hpp"
 #include "scatterlut/anisotropic.hpp"
 #include "scatterlut/io.hpp"
 
@@ -71,8 +72,9 @@ Rgb eval_channels(const nlohmann::json &q, const char *name) {
     return {x, x, x};
 }
 
-// The anisotropic airlight (phase_g ≠ 0) of one channel: exact by quadrature (anisotropic.hpp).
-void answer_airlight_phase(const nlohmann::json &q, double phase_g, nlohmann::json &out) {
+// The anisotropic airlight (phase_g ≠ 0) of one channel: exact by quadrature (anisotropic.hpp),
+// the table from a loaded anisotropic airlight table of the same g.
+void answer_airlight_phase(const nlohmann::json &q, double phase_g, nlohmann::json &out, const EvalTables &tables) {
     AirlightQuery a;
     a.sigma_s_per_m = eval_number_field(q, "sigma_s");
     a.sigma_a_per_m = eval_number_field(q, "sigma_a");
@@ -82,7 +84,11 @@ void answer_airlight_phase(const nlohmann::json &q, double phase_g, nlohmann::js
     a.length_m = eval_number_field(q, "length");
     eval_put(out, "exact", airlight_radiance_exact(a, phase_g)); // validates the query
     if (a.gamma_rad == 0.0 && a.length_m >= a.distance_m) out["note"] = "diverges: the view ray passes through the light";
-    out["table"] = nullptr; // no loaded table has this g (a table answers only a query of its own g)
+    // A table answers only a query of its own g (it covers every u and w: asymptotic forms beyond its axes).
+    const AirlightHgTable *table =
+        first_runtime<AirlightHgTable>(tables.samplers, [&](const AirlightHgTable &t) { return t.serves(phase_g); });
+    if (table) eval_put(out, "table", table->radiance(a));
+    else out["table"] = nullptr;
 }
 
 // The anisotropic near light (phase_g ≠ 0) of one channel: exact by quadrature. The thin-medium
@@ -114,7 +120,7 @@ nlohmann::json channel_answer(const RuntimeKind &kind, const std::string &quanti
     q.erase("phase_g");
     nlohmann::json out = nlohmann::json::object();
     if (phase_g == 0.0) kind.answer_eval(quantity, q, out, tables);
-    else if (quantity == "airlight") answer_airlight_phase(q, phase_g, out);
+    else if (quantity == "airlight") answer_airlight_phase(q, phase_g, out, tables);
     else answer_near_light_phase(q, phase_g, out);
     note_non_finite(out);
     return out;
