@@ -89,7 +89,7 @@ double AirlightHgTable::radiance(const AirlightQuery &q) const {
     double B = -1.0;
     if (sin_gamma >= 1e-6 && (s_over_D < 1.0 || sin_gamma > 0.0)) {
         const double u = sigma_t * q.distance_m * sin_gamma;
-        const double w2 = std::atan2(sh, ch); // π/2 − γ/2, exact near γ → π too
+        const double w2 = std::atan2(ch, sh); // π/2 − γ/2, exact near γ → π too
         const double a = w2 * scaled_tail(u, w2);
         double b = 0.0;
         if (s_over_D <= 1e300) {
