@@ -40,39 +40,15 @@ Table make_airlight_hg_table_layout(const AirlightHgPlan &plan) {
     return t;
 }
 
-std::vector<double> integrate_airlight_hg_ln_gs(Device &device, const Table &layout) {
-    const double g = table_phase_g(layout);
-    const slut_axis &au = layout.axes[0].map;
-    const slut_axis &aw = layout.axes[1].map;
-    std::vector<double> u_nodes(static_cast<size_t>(au.count)), w_nodes(static_cast<size_t>(aw.count));
-    for (int i = 0; i < au.count; ++i) u_nodes[static_cast<size_t>(i)] = slut_axis_node(&au, i);
-    for (int j = 0; j < aw.count; ++j) w_nodes[static_cast<size_t>(j)] = slut_axis_node(&aw, j);
-    cl::Program &program = device.program("airlight_Fg.cl");
-    cl::Kernel kernel(program, "airlight_hg_ln_gs");
-    std::vector<double> values(u_nodes.size() * w_nodes.size());
-    SLUT_CHECK_GT(values.size(), 0u);
-    const cl::Buffer out = output_buffer(device, values);
-    const cl::Buffer b_u = input_buffer(device, u_nodes), b_w = input_buffer(device, w_nodes);
-    int arg = 0;
-    kernel.setArg(arg++, out);
-    kernel.setArg(arg++, au.count);
-    kernel.setArg(arg++, aw.count);
-    kernel.setArg(arg++, b_u);
-    kernel.setArg(arg++, b_w);
-    kernel.setArg(arg++, g);
-    kernel.setArg(arg++, 1.0); // refine: the rule
-    device.queue().enqueueNDRangeKernel(kernel, cl::NullRange,
-                                        cl::NDRange(static_cast<size_t>(au.count), static_cast<size_t>(aw.count)));
-    wait_for_output(device, out, values);
-    device.kernels_ran("airlight_Fg.cl");
-    return values;
+std::vector<double> integrate_airlight_hg_ln_gs(Device &device, const Table &layout, double tolerance) {
+    return integrate_airlight_hg_ln_gs_sweep(device, layout, tolerance, table_phase_g(layout));
 }
 
 Table generate_airlight_hg_table(Device &device, const AirlightHgPlan &plan, const Provenance &provenance,
                                  const std::function<void(double)> &progress) {
     Table t = make_airlight_hg_table_layout(plan);
     begin_generation(t, provenance, plan.integration_tolerance);
-    t.values = integrate_airlight_hg_ln_gs(device, t);
+    t.values = integrate_airlight_hg_ln_gs(device, t, plan.integration_tolerance);
     if (progress) progress(1.0);
     t.accuracy.integration_max_rel = measure_airlight_hg_integration(t, airlight_measurement_nodes(t, 400, 1),
                                                                      IntegrationReference::FinerPanelRule);

@@ -19,7 +19,7 @@ struct AirlightHgPlan {
     double u_max = 64.0;   // largest σ_t·D·sin γ; beyond it the large-u series (the planner measures its onset)
     double u_scale = 1e-7; // LOG1P warp scale
     double w_min = 1e-3;   // smallest w = π/2 − v; below it the three-term small-w form
-    double integration_tolerance = 1e-13; // what the quadrature reaches (~1e-15); recorded, measured
+    double integration_tolerance = 1e-13; // relative, on G̃_g (the sweep's panels at 1e-4 of it); measured
     int n_u = 512;
     int n_w = 256;
     Storage storage = Storage::F32;
@@ -28,8 +28,10 @@ struct AirlightHgPlan {
 // A table with the plan's axes, its g in extra "phase.g", and no values yet.
 Table make_airlight_hg_table_layout(const AirlightHgPlan &plan);
 
-// ln G̃_g at every node of the layout (axis 0 fastest), on the device; g from the layout.
-std::vector<double> integrate_airlight_hg_ln_gs(Device &device, const Table &layout);
+// ln G̃_g at every node of the layout (axis 0 fastest), on the device; g from the layout:
+// the sweep of kernels/airlight_Fg.cl (its panels held to 1e-4 of `tolerance`, as the
+// isotropic table's; generate_airlight.cpp).
+std::vector<double> integrate_airlight_hg_ln_gs(Device &device, const Table &layout, double tolerance);
 
 // Integrates every node on the device and measures the table's accuracy on the host.
 Table generate_airlight_hg_table(Device &device, const AirlightHgPlan &plan, const Provenance &provenance,

@@ -107,8 +107,8 @@ public:
         p.integration_tolerance = tolerance;
         return make_airlight_hg_table_layout(p);
     }
-    std::vector<double> integrate(Device &device, const Table &layout, double) const override {
-        return integrate_airlight_hg_ln_gs(device, layout); // the rule reaches ~1e-15 at any tolerance
+    std::vector<double> integrate(Device &device, const Table &layout, double tolerance) const override {
+        return integrate_airlight_hg_ln_gs(device, layout, tolerance);
     }
     Table generate(Device &device, const std::any &plan, const Provenance &provenance,
                    const std::function<void(double)> &progress) const override {
