@@ -75,13 +75,7 @@ Rgb eval_channels(const nlohmann::json &q, const char *name) {
 // The anisotropic airlight (phase_g ≠ 0) of one channel: exact by quadrature (anisotropic.hpp),
 // the table from a loaded anisotropic airlight table of the same g.
 void answer_airlight_phase(const nlohmann::json &q, double phase_g, nlohmann::json &out, const EvalTables &tables) {
-    AirlightQuery a;
-    a.sigma_s_per_m = eval_number_field(q, "sigma_s");
-    a.sigma_a_per_m = eval_number_field(q, "sigma_a");
-    a.intensity_W_per_sr = eval_number_field(q, "intensity");
-    a.distance_m = eval_number_field(q, "distance");
-    a.gamma_rad = eval_number_field(q, "gamma");
-    a.length_m = eval_number_field(q, "length");
+    const AirlightQuery a = eval_airlight_query(q);
     eval_put(out, "exact", airlight_radiance_exact(a, phase_g)); // validates the query
     if (a.gamma_rad == 0.0 && a.length_m >= a.distance_m) out["note"] = "diverges: the view ray passes through the light";
     // A table answers only a query of its own g (it covers every u and w: asymptotic forms beyond its axes).
@@ -94,19 +88,7 @@ void answer_airlight_phase(const nlohmann::json &q, double phase_g, nlohmann::js
 // The anisotropic near light (phase_g ≠ 0) of one channel: exact by quadrature. The thin-medium
 // and distant-light forms of near_light queries are isotropic: not given for phase_g ≠ 0.
 void answer_near_light_phase(const nlohmann::json &q, double phase_g, nlohmann::json &out) {
-    NearLightQuery n;
-    n.sigma_s_per_m = eval_number_field(q, "sigma_s");
-    n.sigma_a_per_m = eval_number_field(q, "sigma_a");
-    n.intensity_W_per_sr = eval_number_field(q, "intensity");
-    eval_vector_field(q, "normal", n.normal);
-    eval_vector_field(q, "eye_dir", n.eye_dir);
-    eval_vector_field(q, "light_pos", n.light_rel_m);
-    n.length_m = eval_number_field(q, "length");
-    if (q.contains("eta")) n.eta = eval_number_field(q, "eta");
-    if (q.contains("fresnel")) {
-        if (!q.at("fresnel").is_boolean()) throw std::invalid_argument("field \"fresnel\" must be true or false");
-        n.fresnel = q.at("fresnel").get<bool>();
-    }
+    const NearLightQuery n = eval_near_light_query(q);
     eval_put(out, "exact", near_light_radiance_exact(n, phase_g)); // validates the query
     out["table"] = nullptr; // no loaded table has this g
 }
@@ -187,6 +169,34 @@ void eval_put(nlohmann::json &out, const char *name, double value) {
     }
     out[name] = nullptr;
     out[kNonFiniteKey].push_back({name, std::isnan(value) ? "nan" : value > 0 ? "+inf" : "-inf"});
+}
+
+AirlightQuery eval_airlight_query(const nlohmann::json &q) {
+    AirlightQuery a;
+    a.sigma_s_per_m = eval_number_field(q, "sigma_s");
+    a.sigma_a_per_m = eval_number_field(q, "sigma_a");
+    a.intensity_W_per_sr = eval_number_field(q, "intensity");
+    a.distance_m = eval_number_field(q, "distance");
+    a.gamma_rad = eval_number_field(q, "gamma");
+    a.length_m = eval_number_field(q, "length");
+    return a;
+}
+
+NearLightQuery eval_near_light_query(const nlohmann::json &q) {
+    NearLightQuery n;
+    n.sigma_s_per_m = eval_number_field(q, "sigma_s");
+    n.sigma_a_per_m = eval_number_field(q, "sigma_a");
+    n.intensity_W_per_sr = eval_number_field(q, "intensity");
+    eval_vector_field(q, "normal", n.normal);
+    eval_vector_field(q, "eye_dir", n.eye_dir);
+    eval_vector_field(q, "light_pos", n.light_rel_m);
+    n.length_m = eval_number_field(q, "length");
+    if (q.contains("eta")) n.eta = eval_number_field(q, "eta");
+    if (q.contains("fresnel")) {
+        if (!q.at("fresnel").is_boolean()) throw std::invalid_argument("field \"fresnel\" must be true or false");
+        n.fresnel = q.at("fresnel").get<bool>();
+    }
+    return n;
 }
 
 void eval_vector_field(const nlohmann::json &q, const char *name, double *out) {

@@ -20,20 +20,9 @@
 namespace {
 
 using Result = slut_test::RunResult;
-std::string stem() { return slut_test::temp_stem("validate"); }
 Result run(const std::string &args) { return slut_test::run_scatterlut(args); }
 
-// Small tables, generated once per test process.
-const std::string &tables_dir() {
-    static const std::string dir = [] {
-        const std::string d = stem() + "_tables";
-        std::filesystem::remove_all(d);
-        const Result gen = run("generate --out " + d + " --n-u 128 --n-w 64");
-        EXPECT_EQ(gen.exit_code, 0) << gen.out;
-        return d;
-    }();
-    return dir;
-}
+const std::string &tables_dir() { return slut_test::small_generated_tables_dir(); }
 
 const char *const kStems[] = {"airlight_F", "near_light_E3", "near_light_E4"};
 

@@ -15,6 +15,7 @@
 #include "eval.hpp"
 #include "generate_nearlight.hpp"
 #include "nearlight_reference.hpp"
+#include "nearlight_tables.hpp"
 #include "opencl_device.hpp"
 #include "reference_data.hpp"
 #include "scatterlut/airlight.hpp"
@@ -23,50 +24,10 @@ extern "C" {
 #include "slut_nearlight.h"
 }
 
-namespace {
-
-scatterlut::Device &device() {
-    static scatterlut::Device d("");
-    return d;
-}
-
-const scatterlut::Table &small_table(bool finite) {
-    static const auto make = [](bool fin) {
-        scatterlut::NearLightPlan plan;
-        plan.finite_thickness = fin;
-        plan.n_T = 9;
-        plan.n_g = 11;
-        plan.n_r = 20; // two lane groups, the second partial
-        plan.n_S = 5;
-        plan.storage = scatterlut::Storage::F64;
-        return scatterlut::generate_nearlight_table(device(), plan, scatterlut::Provenance{});
-    };
-    static const scatterlut::Table e3 = make(false), e4 = make(true);
-    return finite ? e4 : e3;
-}
-
-// The default finite-thickness table (generated once; ~10–40 s on 2 busy cores).
-const scatterlut::Table &default_e4() {
-    static const scatterlut::Table t =
-        scatterlut::generate_nearlight_table(device(), scatterlut::default_near_light_plan(true), {});
-    return t;
-}
-
-scatterlut::NearLightQuery query_of(const slut_test::NearLightRef &c) {
-    scatterlut::NearLightQuery q;
-    q.sigma_s_per_m = c.sigma_s;
-    q.sigma_a_per_m = c.sigma_a;
-    q.intensity_W_per_sr = c.intensity;
-    for (int k = 0; k < 3; ++k) {
-        q.normal[k] = c.normal[k];
-        q.eye_dir[k] = c.eye_dir[k];
-        q.light_rel_m[k] = c.light_pos[k];
-    }
-    q.length_m = c.length;
-    return q;
-}
-
-} // namespace
+using slut_test::default_e4;
+using slut_test::device;
+using slut_test::query_of;
+using slut_test::small_table;
 
 // Every node of a 3-D and a 4-D table against Boost Gauss–Kronrod with break points:
 // ≤ 1e-8 relative (the bound asked of the kernel; we expect ~1e-14).
