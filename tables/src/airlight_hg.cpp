@@ -105,29 +105,11 @@ double AirlightHgTable::radiance(const AirlightQuery &q) const {
         if (std::isfinite(a) && std::isfinite(b) && b <= 0.5 * a && a > 0.0) B = (a - b) / sin_gamma;
     }
     if (B < 0.0) B = slut_hg_airlight_bracket(sigma_t * q.distance_m, sh, ch, s_over_D, g_, 1.0);
-    if (!(B > 0.0)) return 0.0;
-    if (!std::isfinite(B)) return HUGE_VAL;
-    const double scale = q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * 2.0 / q.distance_m *
-                         std::exp(-sigma_t * q.distance_m);
-    if (scale >= SLUT_DBL_MIN_NORMAL && scale <= 1e300) return scale * B;
-    return std::exp(std::log(q.sigma_s_per_m) + std::log(SLUT_INV_4PI * 2.0) + std::log(q.intensity_W_per_sr) -
-                    std::log(q.distance_m) - sigma_t * q.distance_m + std::log(B));
+    return airlight_radiance_from_bracket(q, sigma_t * q.distance_m, B);
 }
 
 Rgb AirlightHgTable::radiance_rgb(const AirlightQuery &q, const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m) const {
-    Rgb out{};
-    for (size_t c = 0; c < 3; ++c) {
-        require(sigma_s_per_m[c] >= 0.0 && std::isfinite(sigma_s_per_m[c]) && sigma_a_per_m[c] >= 0.0 &&
-                    std::isfinite(sigma_a_per_m[c]),
-                "sigma_s and sigma_a must be finite and >= 0 (1/m) in every channel");
-    }
-    for (size_t c = 0; c < 3; ++c) {
-        AirlightQuery qc = q;
-        qc.sigma_s_per_m = sigma_s_per_m[c];
-        qc.sigma_a_per_m = sigma_a_per_m[c];
-        out[c] = radiance(qc);
-    }
-    return out;
+    return per_channel(q, sigma_s_per_m, sigma_a_per_m, [this](const AirlightQuery &one) { return radiance(one); });
 }
 
 double airlight_hg_radiance_thin(const AirlightQuery &q, double phase_g) {
@@ -137,13 +119,8 @@ double airlight_hg_radiance_thin(const AirlightQuery &q, double phase_g) {
     double sh = 0, ch = 0;
     slut_hg_half_angles(std::sin(q.gamma_rad), std::cos(q.gamma_rad), &sh, &ch);
     const double s_over_D = (q.length_m > 1e300) ? HUGE_VAL : q.length_m / q.distance_m;
-    const double B = slut_hg_airlight_bracket(0.0, sh, ch, s_over_D, phase_g, 1.0); // no extinction
-    if (!(B > 0.0)) return 0.0;
-    if (!std::isfinite(B)) return HUGE_VAL;
-    const double scale = q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * 2.0 / q.distance_m;
-    if (scale >= SLUT_DBL_MIN_NORMAL && scale <= 1e300) return scale * B;
-    return std::exp(std::log(q.sigma_s_per_m) + std::log(SLUT_INV_4PI * 2.0) + std::log(q.intensity_W_per_sr) -
-                    std::log(q.distance_m) + std::log(B));
+    // No extinction: the bracket at optical distance 0, and no e^{−σ_t D}.
+    return airlight_radiance_from_bracket(q, 0.0, slut_hg_airlight_bracket(0.0, sh, ch, s_over_D, phase_g, 1.0));
 }
 
 double airlight_hg_radiance_distant(const AirlightQuery &q, double phase_g) {
