@@ -36,6 +36,13 @@ struct AirlightPlan {
 // A table with the plan's axes (and, for g ≠ 0, its g in extra "phase.g") and no values yet.
 Table make_airlight_table_layout(const AirlightPlan &plan);
 
+// The scale s of the w axis's ASINH_COT_PEAK warp for g > 0 (kernels/slut_axes.h: log spacing
+// in v = π/2 − w down to s, linear below): half the forward peak's width (1 − g)/(1 + g) in
+// tan ξ (the distance of k_g's singularities from the real axis, generate_airlight.cpp), the
+// best of 1/8 … 2 times that width by the sampling error against node count (docs/AIRLIGHT.md);
+// 0 for g ≤ 0, whose w axis is ASINH_COT (the isotropic table's, bit for bit at g = 0).
+double airlight_w_peak_scale(double phase_g);
+
 // The Henyey–Greenstein g of an airlight table of either kind: 0 for airlight_F, the recorded
 // "phase.g" for airlight_Fg (throws std::invalid_argument when that is missing or bad).
 double airlight_table_phase_g(const Table &table);
