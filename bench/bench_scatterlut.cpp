@@ -30,7 +30,6 @@
 #include "airlight_reference.hpp"
 #include "baselines.hpp"
 #include "generate_airlight.hpp"
-#include "generate_airlight_hg.hpp"
 #include "generate_nearlight.hpp"
 #include "measure_util.hpp"
 #include "opencl_device.hpp"
@@ -170,8 +169,8 @@ void BM_AirlightGeneration(benchmark::State &state) {
 }
 BENCHMARK(BM_AirlightGeneration)->Arg(257)->Arg(1025)->Iterations(7)->Unit(benchmark::kMillisecond);
 
-// One round: the anisotropic airlight table (g = state.range(1)/100, kernels/airlight_Fg.cl)
-// and the isotropic one (the sweep of kernels/airlight_F.cl) of the same N×N axes on the
+// One round: the anisotropic airlight table (g = state.range(1)/100) and the isotropic one
+// (the one sweep of kernels/airlight_F.cl, the integrand in the host's weights) of the same N×N axes on the
 // device, back to back (order alternating between rounds). Counters: hg_over_iso (median and
 // range of the per-round time ratios; the acceptance asks ≤ 2), both times, and the HG
 // table's accuracy at 400 nodes against the finer panel rule (refine = 3).
@@ -179,13 +178,13 @@ void BM_AirlightHgGeneration(benchmark::State &state) {
     const int n = static_cast<int>(state.range(0));
     scatterlut::AirlightPlan iso;
     iso.n_u = iso.n_w = n;
-    scatterlut::AirlightHgPlan hg;
+    scatterlut::AirlightPlan hg;
     hg.n_u = hg.n_w = n;
     hg.phase_g = static_cast<double>(state.range(1)) / 100.0;
     const scatterlut::Table iso_layout = scatterlut::make_airlight_table_layout(iso);
-    scatterlut::Table hg_layout = scatterlut::make_airlight_hg_table_layout(hg);
+    scatterlut::Table hg_layout = scatterlut::make_airlight_table_layout(hg);
     scatterlut::integrate_airlight_ln_gs(device(), iso_layout); // warm-up: JIT
-    hg_layout.values = scatterlut::integrate_airlight_hg_ln_gs(device(), hg_layout, hg.integration_tolerance);
+    hg_layout.values = scatterlut::integrate_airlight_ln_gs(device(), hg_layout, hg.integration_tolerance);
     std::vector<double> iso_s, hg_s, ratio;
     int round = 0;
     for (auto _ : state) {
@@ -193,7 +192,7 @@ void BM_AirlightHgGeneration(benchmark::State &state) {
         for (int k = 0; k < 2; ++k) {
             const bool hg_now = (k == 0) == (round % 2 == 0);
             const auto t0 = Clock::now();
-            if (hg_now) benchmark::DoNotOptimize(scatterlut::integrate_airlight_hg_ln_gs(device(), hg_layout, hg.integration_tolerance));
+            if (hg_now) benchmark::DoNotOptimize(scatterlut::integrate_airlight_ln_gs(device(), hg_layout, hg.integration_tolerance));
             else benchmark::DoNotOptimize(scatterlut::integrate_airlight_ln_gs(device(), iso_layout));
             (hg_now ? t_hg : t_iso) = seconds_since(t0);
             settle(state);
@@ -208,7 +207,7 @@ void BM_AirlightHgGeneration(benchmark::State &state) {
     state.counters["hg_over_iso_max"] = *std::max_element(ratio.begin(), ratio.end());
     state.counters["hg_ms"] = 1e3 * median(hg_s);
     state.counters["iso_ms"] = 1e3 * median(iso_s);
-    state.counters["hg_max_rel"] = scatterlut::measure_airlight_hg_integration(
+    state.counters["hg_max_rel"] = scatterlut::measure_airlight_integration(
         hg_layout, scatterlut::airlight_measurement_nodes(hg_layout, 400, 1),
         scatterlut::IntegrationReference::FinerPanelRule);
 }

@@ -1,19 +1,24 @@
-/* scatterlut — airlight table kernel: ln G̃(u, w) at every node of the table, by a sweep
+/* scatterlut — airlight table kernel: ln G̃_g(u, w) at every node of the table, for one
+ * Henyey–Greenstein asymmetry g (g = 0: the isotropic table; docs/PHYSICS.md §1.4), by a sweep
  * along w that shares one set of quadrature nodes between all rows u.
  *
  * With τ_j = cot w_j (w_0 = w_min < w_1 < … < w_{n−1} = π/2, so τ decreases) and
- *   S_j(u) = w_j·G̃(u, w_j) = ∫_0^∞ e^{−u y} / (1 + (τ_j + y)²) dy          (slut_airlight.h)
+ *   S_j(u) = w_j·G̃_g(u, w_j) = ∫_0^∞ e^{−u y} k_g(τ_j + y) dy,
+ *   k_0(t) = 1/(1 + t²)                                                   (slut_airlight.h)
+ *   k_g(t) = (1 − g²)·√(1 + t²) / ((1 − g)² + (1 + g)² t²)^{3/2}           (slut_airlight_hg.h)
  * splitting the range at y = Δ_j = τ_{j−1} − τ_j gives the exact recurrence
- *   S_j = ∫_0^{Δ_j} e^{−u y} / (1 + (τ_j + y)²) dy + e^{−u Δ_j} S_{j−1},
+ *   S_j = ∫_0^{Δ_j} e^{−u y} k_g(τ_j + y) dy + e^{−u Δ_j} S_{j−1},
  * and the first (semi-infinite) S_0 is the same integral with Δ_0 = ∞. Every term is
  * positive, so relative accuracy carries through the sweep (no cancellation, unlike
  * F(u, π/2) − F(u, v)). The integral over [0, Δ_j] is a fixed rule
- *   Σ_n W_jn e^{−u y_jn},   W_jn = (Gauss–Legendre weight)·1/(1 + (τ_j + y_jn)²),
+ *   Σ_n W_jn e^{−u y_jn},   W_jn = (Gauss–Legendre weight)·k_g(τ_j + y_jn),
  * whose nodes do not depend on u: the host builds them once per table (graded panels
- * towards y = 0 resolve the layer of width 1/u for every u ≤ u_max; see
- * generate_airlight.cpp), and one node costs one exp per row. Rows of small u need far
- * fewer nodes (no layer to resolve), so the host builds rule sets for u ≤ u_max/4^c and
- * each work-item uses the set that covers its largest u.
+ * towards y = 0 resolve the layer of width 1/u for every u ≤ u_max, panels kept clear of
+ * k_g's singularities at y = −τ ± iβ, β = min(1, (1 − g)/(1 + g)); see
+ * generate_airlight.cpp), and one node costs one exp per row. The integrand lives in the
+ * weights only: this one kernel serves every g. Rows of small u need far fewer nodes (no
+ * layer to resolve), so the host builds rule sets for u ≤ u_max/4^c and each work-item uses
+ * the set that covers its largest u.
  *
  * One work-item holds 8 consecutive rows u as a double8 (PoCL does not vectorise across
  * work-items around a data-dependent loop; explicit vectors do). Rows are ascending, so
@@ -22,14 +27,18 @@
  * Where the layer at y = 0 is thin (u ≥ slut_gs_series_u_min(w_j) for lane 0, hence all
  * lanes) the whole S_j is the large-u series Σ_k c_k(w_j)/u^{k+1} instead (slut_airlight.h:
  * ≤ 1e-16 relative there; the host passes the coefficients), and the sweep continues from it.
+ * The series' coefficients are the Lorentzian's: for g ≠ 0 the host passes series_u_min = ∞.
  * Where the interval is short for every lane (u_7·Δ_j ≤ 2·SLUT_GS_TAYLOR_X, lane 7 the
  * largest u) the rule is its Taylor form about Δ_j/2, e^{−u Δ_j/2} Σ_k m_jk u^k
  * (slut_airlight.h: ≤ 2e-18 relative; the host passes the moments of interval j's rule):
  * one exp for the interval, whose square is the recurrence's e^{−u Δ_j}, and 15 fma.
- * Output: out[j·n_u + i] = ln G̃(u_i, w_j) (axis 0 fastest, the file layout); u = 0 is
- * exactly ln 1 = 0.
+ * Output: out[j·n_u + i] = ln G̃_g(u_i, w_j) (axis 0 fastest, the file layout); u = 0 is
+ * exactly ln 1 = 0 for g = 0 (G̃_g(0, w) for g ≠ 0 is the mean of ψ_g, not 1: the host
+ * overwrites those rows, generate_airlight.cpp).
+ * The Henyey–Greenstein functions of slut_airlight_hg.h are compiled here too (OpenCL C), so
+ * that PoCL checks them.
  */
-#include "slut_airlight.h" /* SLUT_GS_SERIES_TERMS, SLUT_GS_TAYLOR_TERMS, SLUT_GS_TAYLOR_X */
+#include "slut_airlight_hg.h" /* and through it slut_airlight.h: SLUT_GS_SERIES_TERMS, SLUT_GS_TAYLOR_TERMS, SLUT_GS_TAYLOR_X */
 
 __kernel void airlight_ln_gs_sweep(__global double *out, int n_u, int n_w,
                                    __global const double *u_rows,     /* n_u padded to 8k, ascending */

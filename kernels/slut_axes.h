@@ -23,6 +23,11 @@
  *                                                         peak as g → −1)
  *   LOGLIN    g(p) = ln p + p/s,     p > 0, s = scale    (log spacing below s, linear
  *                                                         spacing s·Δ above: both ends of T)
+ *   ASINH_COT_PEAK                                      (ASINH_COT with a forward peak at v = 0:
+ *             g(p) = −asinh(cot p) − asinh((π/2 − p)/s),  log spacing in v = π/2 − p above
+ *             s = scale > 0, p ∈ (0, π/2]               s as well, linear below it; the
+ *                                                       anisotropic airlight's w axis, s the
+ *                                                       phase's forward-peak width)
  *   NL_QODDS  the near-light slab axis (E4's axis "q"): its unit coordinate depends on T
  *             and g as well, so only slut_nearlight.h (slut_nl_unit_from_S) computes it.
  *             The one-parameter maps below treat it as LOG in S, which it equals at g = 1.
@@ -47,7 +52,8 @@
 #define SLUT_WARP_SQRT1P 4
 #define SLUT_WARP_LOGLIN 5
 #define SLUT_WARP_NL_QODDS 6
-#define SLUT_WARP_COUNT 7
+#define SLUT_WARP_ASINH_COT_PEAK 7
+#define SLUT_WARP_COUNT 8
 
 /* Warp g(p). */
 SLUT_FN double slut_warp_forward(int warp, double p, double p_min, double scale) {
@@ -67,8 +73,35 @@ SLUT_FN double slut_warp_forward(int warp, double p, double p_min, double scale)
     case SLUT_WARP_SQRT1P: return sqrt(fmax(1.0 + p, 0.0));
     case SLUT_WARP_LOGLIN: return log(p) + p / scale;
     case SLUT_WARP_NL_QODDS: return log(p);
+    case SLUT_WARP_ASINH_COT_PEAK: {
+        /* ASINH_COT's form, minus asinh(v/s) = ln(v/s + √(1 + (v/s)²)) (v ≥ 0: no cancellation). */
+        double v_over_s = fmax(SLUT_PIO2_HI - p, 0.0) / scale;
+        return -log((1.0 + cos(p)) / sin(p)) - log(v_over_s + sqrt(1.0 + v_over_s * v_over_s));
+    }
     default: return p;
     }
+}
+
+/* Inverse of ASINH_COT_PEAK in t = cot p ≥ 0 (v = π/2 − p = atan t): the root of
+ * h(t) = asinh(t) + asinh(atan(t)/s) − target, target = −y ≥ 0. h is increasing and concave
+ * (asinh and atan are, and so is their composition), so, as for LOGLIN, Newton's steps from
+ * t = 0 (below the root) increase monotonically to it. p = atan2(1, t) keeps p's relative
+ * precision as p → 0. Stops at a relative step ≤ 4e-16; round trip tested in
+ * tests/kernels/test_axes.cpp. */
+SLUT_FN double slut_asinh_cot_peak_inverse(double y, double s) {
+    double target = -y, t = 0.0;
+    if (!(target > 0.0)) return SLUT_PIO2_HI;
+    for (int k = 0; k < 200; ++k) {
+        double v = atan(t), v_over_s = v / s, one_t2 = 1.0 + t * t;
+        double h = log(t + sqrt(one_t2)) + log(v_over_s + sqrt(1.0 + v_over_s * v_over_s)) - target;
+        double dh = 1.0 / sqrt(one_t2) + 1.0 / (one_t2 * sqrt(s * s + v * v));
+        double next = t - h / dh;
+        if (!(next >= t)) break; /* at the root (rounding): the steps only increase */
+        double step = next - t;
+        t = next;
+        if (step <= 4e-16 * t) break;
+    }
+    return atan2(1.0, t);
 }
 
 /* Inverse of LOGLIN: the root p > 0 of f(p) = ln p + p/s − y. f is increasing and concave,
@@ -101,6 +134,7 @@ SLUT_FN double slut_warp_inverse(int warp, double y, double p_min, double scale)
     case SLUT_WARP_SQRT1P: return y * y - 1.0;
     case SLUT_WARP_LOGLIN: return slut_loglin_inverse(y, scale);
     case SLUT_WARP_NL_QODDS: return exp(y);
+    case SLUT_WARP_ASINH_COT_PEAK: return slut_asinh_cot_peak_inverse(y, scale);
     default: return y;
     }
 }

@@ -12,33 +12,57 @@
 #include "measure_util.hpp"
 #include "reference_quadrature.hpp"
 #include "table_build.hpp"
+#include "scatterlut/airlight_hg.hpp"
 #include "scatterlut/io.hpp"
 #include "scatterlut/sampler.hpp"
 
 extern "C" {
-#include "slut_airlight.h"
-#include "slut_airlight_hg.h"
+#include "slut_airlight_hg.h" /* and through it slut_airlight.h */
 #include "slut_gauss_legendre.h"
 }
 
 namespace scatterlut {
 
 Table make_airlight_table_layout(const AirlightPlan &plan) {
+    const bool isotropic = plan.phase_g == 0.0;
+    if (!isotropic) check_phase_g(plan.phase_g);
+    const char *F = isotropic ? "F" : "F_g";
     Table t;
-    t.kind = kKindAirlightF;
-    t.quantity_version = kAirlightFQuantityVersion;
-    t.axes = {make_axis("u", "optical distance sigma_t*D*sin(gamma) (dimensionless), first argument of F(u,v)", 0.0,
-                        plan.u_max, plan.u_scale, SLUT_WARP_LOG1P, plan.n_u),
-              make_axis("w", "pi/2 - v (rad), v the second argument of F(u,v)", plan.w_min, SLUT_PIO2_HI, 0.0,
-                        SLUT_WARP_ASINH_COT, plan.n_w)};
+    t.kind = isotropic ? kKindAirlightF : kKindAirlightFg;
+    t.quantity_version = isotropic ? kAirlightFQuantityVersion : kAirlightFgQuantityVersion;
+    const std::string u_meaning =
+        std::string("optical distance sigma_t*D*sin(gamma) (dimensionless), first argument of ") + F + "(u,v)";
+    const std::string w_meaning = std::string("pi/2 - v (rad), v the second argument of ") + F + "(u,v)";
+    const double peak_scale = airlight_w_peak_scale(plan.phase_g);
+    t.axes = {make_axis("u", u_meaning.c_str(), 0.0, plan.u_max, plan.u_scale, SLUT_WARP_LOG1P, plan.n_u),
+              make_axis("w", w_meaning.c_str(), plan.w_min, SLUT_PIO2_HI, peak_scale,
+                        peak_scale > 0.0 ? SLUT_WARP_ASINH_COT_PEAK : SLUT_WARP_ASINH_COT, plan.n_w)};
     Channel c;
-    c.name = "ln_Gs";
-    c.meaning = "ln of the scaled tail Gs(u,w) = exp(u cot w) * int_{pi/2-w}^{pi/2} exp(-u tan x) dx / w, in (0,1]";
     c.encoding = Encoding::Log;
+    if (isotropic) {
+        c.name = "ln_Gs";
+        c.meaning =
+            "ln of the scaled tail Gs(u,w) = exp(u cot w) * int_{pi/2-w}^{pi/2} exp(-u tan x) dx / w, in (0,1]";
+    } else {
+        c.name = "ln_Gs_g";
+        c.meaning = "ln of the scaled tail Gs_g(u,w) = exp(u cot w) * int_{pi/2-w}^{pi/2} psi_g(2x) exp(-u tan x) dx "
+                    "/ w, psi_g = 4 pi p_g (Henyey-Greenstein, g = phase.g), in (0, psi_max]";
+        char text[32];
+        std::snprintf(text, sizeof text, "%.17g", plan.phase_g);
+        t.extra[kPhaseGKey] = text;
+    }
     t.channels = {c};
     t.storage = plan.storage;
     return t;
 }
+
+double airlight_w_peak_scale(double phase_g) {
+    if (!(phase_g > 0.0)) return 0.0;
+    // Half the peak's width: measured best of 1/8 … 2 × (1 − g)/(1 + g) (docs/AIRLIGHT.md).
+    return 0.5 * (1.0 - phase_g) / (1.0 + phase_g);
+}
+
+double airlight_table_phase_g(const Table &table) { return table.kind == kKindAirlightFg ? table_phase_g(table) : 0.0; }
 
 namespace {
 
@@ -238,10 +262,14 @@ std::vector<double> taylor_moments(const std::vector<double> &tau, const std::ve
     return m;
 }
 
-// The sweep for the integrand of asymmetry g (0: the Lorentzian, kernels/airlight_F.cl; g ≠ 0:
-// k_g, kernels/airlight_Fg.cl, without the large-u series, whose coefficients are the
-// Lorentzian's: the rule sets resolve the layer at every u instead).
-std::vector<double> integrate_sweep(Device &device, const Table &layout, double tolerance, double g) {
+} // namespace
+
+// The sweep of kernels/airlight_F.cl for the integrand of asymmetry g: the Lorentzian for
+// g = 0, k_g otherwise (the host's weights carry it; the kernel is the same). g ≠ 0 uses no
+// large-u series (its coefficients are the Lorentzian's: series_u_min = ∞, the rule sets
+// resolve the layer at every u instead).
+std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout, double tolerance) {
+    const double g = airlight_table_phase_g(layout);
     const double panel_eps = kPanelShareOfTolerance * tolerance;
     const slut_axis &au = layout.axes[0].map;
     const slut_axis &aw = layout.axes[1].map;
@@ -317,9 +345,9 @@ std::vector<double> integrate_sweep(Device &device, const Table &layout, double 
         node_weight.insert(node_weight.end(), set.weight.begin(), set.weight.end());
     }
 
-    const char *file = (g == 0.0) ? "airlight_F.cl" : "airlight_Fg.cl";
+    const char *file = "airlight_F.cl";
     cl::Program &program = device.program(file);
-    cl::Kernel kernel(program, (g == 0.0) ? "airlight_ln_gs_sweep" : "airlight_hg_ln_gs_sweep");
+    cl::Kernel kernel(program, "airlight_ln_gs_sweep");
     std::vector<double> values(static_cast<size_t>(au.count) * static_cast<size_t>(aw.count));
     // The launch shape the kernel indexes by: one work-item per kLanes rows, a rule set and
     // its per-interval node ranges for each item.
@@ -339,13 +367,8 @@ std::vector<double> integrate_sweep(Device &device, const Table &layout, double 
     kernel.setArg(arg++, out);
     kernel.setArg(arg++, au.count);
     kernel.setArg(arg++, aw.count);
-    if (g == 0.0) {
-        for (const cl::Buffer *b : {&b_u, &b_w, &b_delta, &b_set, &b_begin, &b_y, &b_weight, &b_series_u, &b_series_c, &b_moments})
-            kernel.setArg(arg++, *b);
-    } else { // no series (airlight_Fg.cl)
-        for (const cl::Buffer *b : {&b_u, &b_w, &b_delta, &b_set, &b_begin, &b_y, &b_weight, &b_moments})
-            kernel.setArg(arg++, *b);
-    }
+    for (const cl::Buffer *b : {&b_u, &b_w, &b_delta, &b_set, &b_begin, &b_y, &b_weight, &b_series_u, &b_series_c, &b_moments})
+        kernel.setArg(arg++, *b);
     // Few, heavy work-items: a small local size spreads them over the cores (docs/POCL.md).
     device.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(static_cast<size_t>(items)), cl::NDRange(1));
     wait_for_output(device, out, values);
@@ -365,17 +388,6 @@ std::vector<double> integrate_sweep(Device &device, const Table &layout, double 
     return values;
 }
 
-} // namespace
-
-std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout, double tolerance) {
-    return integrate_sweep(device, layout, tolerance, 0.0);
-}
-
-std::vector<double> integrate_airlight_hg_ln_gs_sweep(Device &device, const Table &layout, double tolerance,
-                                                      double phase_g) {
-    return integrate_sweep(device, layout, tolerance, phase_g);
-}
-
 Table generate_airlight_table(Device &device, const AirlightPlan &plan, const Provenance &provenance,
                               const std::function<void(double)> &progress) {
     Table t = make_airlight_table_layout(plan);
@@ -388,12 +400,20 @@ Table generate_airlight_table(Device &device, const AirlightPlan &plan, const Pr
         measure_airlight_integration(t, airlight_measurement_nodes(t, 400, 1), IntegrationReference::FinerPanelRule);
     t.accuracy.storage_max_rel = storage_rounding_max_rel(t, t.storage);
     for (double &v : t.values) v = round_to_storage(v, t.storage);
-    const SamplingStats s = measure_airlight_sampling(AirlightTable(t), 20000, 2);
+    SamplingStats s;
+    if (plan.phase_g == 0.0) {
+        const AirlightTable air(t);
+        s = measure_airlight_sampling(t, [&air](double u, double w) { return air.scaled_tail(u, w); }, 20000, 2);
+    } else {
+        const AirlightHgTable air(t);
+        s = measure_airlight_sampling(t, [&air](double u, double w) { return air.scaled_tail(u, w); }, 20000, 2);
+    }
     t.accuracy.sampling_max_rel = s.max_rel;
     t.accuracy.sampling_p99_rel = s.p99_rel;
     t.accuracy.sampling_median_rel = s.median_rel;
     t.accuracy.sampling_points = s.points;
-    t.accuracy.sampling_domain = "Gs(u,w) at uniform random unit coordinates over the whole table";
+    t.accuracy.sampling_domain = std::string(plan.phase_g == 0.0 ? "Gs(u,w)" : "Gs_g(u,w)") +
+                                 " at uniform random unit coordinates over the whole table";
     return t;
 }
 
@@ -412,8 +432,11 @@ std::vector<NodeIndex> airlight_measurement_nodes(const Table &table, int nodes,
     return picks;
 }
 
+// g = 0: slut_hg_gs_quadrature hands to slut_gs_quadrature, reference_scaled_tail_hg to
+// reference_scaled_tail: the isotropic path bit for bit.
 double measure_airlight_integration(const Table &table, const std::vector<NodeIndex> &nodes,
                                     IntegrationReference reference) {
+    const double g = airlight_table_phase_g(table);
     const slut_axis &au = table.axes[0].map;
     const slut_axis &aw = table.axes[1].map;
     std::vector<double> err(nodes.size());
@@ -421,8 +444,8 @@ double measure_airlight_integration(const Table &table, const std::vector<NodeIn
         const NodeIndex &p = nodes[static_cast<size_t>(k)];
         const double u = slut_axis_node(&au, static_cast<int>(p[0])), w = slut_axis_node(&aw, static_cast<int>(p[1]));
         const double stored = decode(table.channels[0].encoding, table.values[table.index(p.data())]);
-        const double exact = reference == IntegrationReference::FinerPanelRule ? slut_gs_quadrature(u, w, 3.0)
-                                                                                : reference_scaled_tail(u, w);
+        const double exact = reference == IntegrationReference::FinerPanelRule ? slut_hg_gs_quadrature(u, w, g, 3.0)
+                                                                                : reference_scaled_tail_hg(u, w, g);
         err[static_cast<size_t>(k)] = std::fabs(stored - exact) / exact;
     });
     double worst = 0;
@@ -430,9 +453,11 @@ double measure_airlight_integration(const Table &table, const std::vector<NodeIn
     return worst;
 }
 
-SamplingStats measure_airlight_sampling(const AirlightTable &table, int points, uint64_t seed) {
-    const slut_axis &au = table.table().axes[0].map;
-    const slut_axis &aw = table.table().axes[1].map;
+SamplingStats measure_airlight_sampling(const Table &table, const AirlightScaledTail &scaled_tail, int points,
+                                        uint64_t seed) {
+    const double g = airlight_table_phase_g(table);
+    const slut_axis &au = table.axes[0].map;
+    const slut_axis &aw = table.axes[1].map;
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     std::vector<std::pair<double, double>> at(static_cast<size_t>(points));
@@ -440,8 +465,8 @@ SamplingStats measure_airlight_sampling(const AirlightTable &table, int points, 
     std::vector<double> err(at.size());
     parallel_for(points, [&](int k) {
         const auto [u, w] = at[static_cast<size_t>(k)];
-        const double exact = slut_gs_quadrature(u, w, 1.0);
-        err[static_cast<size_t>(k)] = std::fabs(table.scaled_tail(u, w) - exact) / exact;
+        const double exact = slut_hg_gs_quadrature(u, w, g, 1.0);
+        err[static_cast<size_t>(k)] = std::fabs(scaled_tail(u, w) - exact) / exact;
     });
     SamplingStats s;
     const auto worst = std::max_element(err.begin(), err.end());
@@ -452,6 +477,36 @@ SamplingStats measure_airlight_sampling(const AirlightTable &table, int points, 
     s.median_rel = percentile(err, 0.5);
     s.points = err.size();
     return s;
+}
+
+double airlight_large_u_onset(double phase_g, double target, double w_min) {
+    for (double u = 1.0; u < 1e5; u *= 1.05) {
+        double worst = 0;
+        for (double uu : {u, 1.3 * u, 2.0 * u})
+            for (int i = 0; i < 48 && worst <= 0.5 * target; ++i) {
+                const double w = w_min * std::pow(SLUT_PIO2_HI / w_min, i / 47.0);
+                const double exact = slut_hg_gs_quadrature(uu, w, phase_g, 1.0);
+                worst = std::max(worst, std::fabs(slut_hg_gs_large_u(uu, w, phase_g) - exact) / exact);
+            }
+        if (worst <= 0.5 * target) return u;
+    }
+    return 1e5;
+}
+
+double airlight_small_w_min(double phase_g, double target) {
+    // Halve w from 1e-3 until the small-w form holds at w and below (checked at w, w/2, w/4).
+    for (double w = 1e-3; w > 1e-9; w *= 0.5) {
+        double worst = 0;
+        for (double ww : {w, 0.5 * w, 0.25 * w})
+            for (int i = 0; i < 16; ++i) {
+                const double a = 1e-3 * std::pow(1e7, i / 15.0); // a = u·cot w over 1e-3 … 1e4
+                const double u = a * std::tan(ww);
+                const double exact = slut_hg_gs_quadrature(u, ww, phase_g, 1.0);
+                worst = std::max(worst, std::fabs(slut_hg_gs_small_w(ww, a, phase_g) - exact) / exact);
+            }
+        if (worst <= 0.5 * target) return w;
+    }
+    return 1e-9;
 }
 
 } // namespace scatterlut

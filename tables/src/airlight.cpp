@@ -44,6 +44,8 @@ slut_airlight_geometry setup(const AirlightQuery &q) { return slut_airlight_setu
 
 } // namespace
 
+slut_airlight_geometry detail::airlight_query_near_end(const AirlightQuery &q) { return setup_near_end_unscaled(q); }
+
 void check_airlight_query(const AirlightQuery &q) {
     auto non_negative = [](double x) { return x >= 0.0 && !std::isnan(x); };
     require(non_negative(q.sigma_s_per_m) && std::isfinite(q.sigma_s_per_m), "sigma_s must be finite and >= 0 (1/m)");

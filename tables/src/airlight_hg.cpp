@@ -77,57 +77,26 @@ double AirlightHgTable::scaled_tail(double u, double w) const {
 }
 
 double AirlightHgTable::radiance(const AirlightQuery &q) const {
-    check_airlight_query(q);
-    const double sigma_t = q.sigma_s_per_m + q.sigma_a_per_m;
-    if (!(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0)) return 0.0;
-    if (!(sigma_t * q.distance_m < 1e300)) return 0.0;
-    const double sin_gamma = std::sin(q.gamma_rad), cos_gamma = std::cos(q.gamma_rad);
-    double sh = 0, ch = 0;
-    slut_hg_half_angles(sin_gamma, cos_gamma, &sh, &ch);
-    const double s_over_D = (q.length_m > 1e300) ? HUGE_VAL : q.length_m / q.distance_m;
-    // The bracket B_g (slut_hg_airlight_bracket's) from two table samples where that is sound.
+    // The isotropic runtime's front-end (the query checked; u, w2, w1, e^{−σ_t Δ} without
+    // cancellation, slut_airlight.h): only G̃_g and the fallback integral are the phase's.
+    const slut_airlight_geometry geo = slut_airlight_setup_far_end(detail::airlight_query_near_end(q));
+    if (geo.kind == 1) return 0.0;      // no scattering, no light or no ray; or σ_t D beyond the double range
+    if (geo.kind == 2) return HUGE_VAL; // the ray passes through the light
+    const double s_over_D = SLUT_ISFINITE(q.length_m) ? q.length_m / q.distance_m : HUGE_VAL;
+    // The bracket B_g (slut_hg_airlight_bracket's) from two table samples where that is sound:
+    // w2 G̃_g(u, w2) − e^{−σ_t Δ} w1 G̃_g(u, w1) over sin γ, where the second term is at most half the first.
     double B = -1.0;
-    if (sin_gamma >= 1e-6 && (s_over_D < 1.0 || sin_gamma > 0.0)) {
-        const double u = sigma_t * q.distance_m * sin_gamma;
-        const double w2 = std::atan2(ch, sh); // π/2 − γ/2, exact near γ → π too
-        const double a = w2 * scaled_tail(u, w2);
-        double b = 0.0;
-        if (s_over_D <= 1e300) {
-            // Δ = s + d(s) − D without cancellation (slut_hg_airlight_bracket); tan v1 = tan(γ/2) + Δ/(D sin γ).
-            const double sp = s_over_D, sh2 = sh * sh;
-            const double d_far = (sp > 1.0) ? sp * std::sqrt((1.0 - 1.0 / sp) * (1.0 - 1.0 / sp) + 4.0 * sh2 / sp)
-                                            : std::sqrt((1.0 - sp) * (1.0 - sp) + 4.0 * sp * sh2);
-            const double delta_over_D = (sp >= 1.0) ? (sp - 1.0) + d_far : 4.0 * sp * sh2 / (d_far + (1.0 - sp));
-            const double tan_v1 = sh / ch + delta_over_D / sin_gamma;
-            const double w1 = std::atan2(1.0, tan_v1); // π/2 − v1
-            b = std::exp(-sigma_t * q.distance_m * delta_over_D) * w1 * scaled_tail(u, w1);
-        }
-        if (std::isfinite(a) && std::isfinite(b) && b <= 0.5 * a && a > 0.0) B = (a - b) / sin_gamma;
+    if (geo.sin_gamma >= 1e-6) {
+        const double a = geo.w2 * scaled_tail(geo.u, geo.w2);
+        const double b = geo.w1 > 0.0 ? geo.far_attenuation * geo.w1 * scaled_tail(geo.u, geo.w1) : 0.0;
+        if (std::isfinite(a) && std::isfinite(b) && b <= 0.5 * a && a > 0.0) B = (a - b) / geo.sin_gamma;
     }
-    if (B < 0.0) B = slut_hg_airlight_bracket(sigma_t * q.distance_m, sh, ch, s_over_D, g_, 1.0);
-    if (!(B > 0.0)) return 0.0;
-    if (!std::isfinite(B)) return HUGE_VAL;
-    const double scale = q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * 2.0 / q.distance_m *
-                         std::exp(-sigma_t * q.distance_m);
-    if (scale >= SLUT_DBL_MIN_NORMAL && scale <= 1e300) return scale * B;
-    return std::exp(std::log(q.sigma_s_per_m) + std::log(SLUT_INV_4PI * 2.0) + std::log(q.intensity_W_per_sr) -
-                    std::log(q.distance_m) - sigma_t * q.distance_m + std::log(B));
+    if (B < 0.0) B = slut_hg_airlight_bracket(geo.optical_distance, geo.sin_half, geo.cos_half, s_over_D, g_, 1.0);
+    return airlight_radiance_from_bracket(q, geo.optical_distance, B);
 }
 
 Rgb AirlightHgTable::radiance_rgb(const AirlightQuery &q, const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m) const {
-    Rgb out{};
-    for (size_t c = 0; c < 3; ++c) {
-        require(sigma_s_per_m[c] >= 0.0 && std::isfinite(sigma_s_per_m[c]) && sigma_a_per_m[c] >= 0.0 &&
-                    std::isfinite(sigma_a_per_m[c]),
-                "sigma_s and sigma_a must be finite and >= 0 (1/m) in every channel");
-    }
-    for (size_t c = 0; c < 3; ++c) {
-        AirlightQuery qc = q;
-        qc.sigma_s_per_m = sigma_s_per_m[c];
-        qc.sigma_a_per_m = sigma_a_per_m[c];
-        out[c] = radiance(qc);
-    }
-    return out;
+    return per_channel(q, sigma_s_per_m, sigma_a_per_m, [this](const AirlightQuery &one) { return radiance(one); });
 }
 
 double airlight_hg_radiance_thin(const AirlightQuery &q, double phase_g) {
@@ -137,13 +106,8 @@ double airlight_hg_radiance_thin(const AirlightQuery &q, double phase_g) {
     double sh = 0, ch = 0;
     slut_hg_half_angles(std::sin(q.gamma_rad), std::cos(q.gamma_rad), &sh, &ch);
     const double s_over_D = (q.length_m > 1e300) ? HUGE_VAL : q.length_m / q.distance_m;
-    const double B = slut_hg_airlight_bracket(0.0, sh, ch, s_over_D, phase_g, 1.0); // no extinction
-    if (!(B > 0.0)) return 0.0;
-    if (!std::isfinite(B)) return HUGE_VAL;
-    const double scale = q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * 2.0 / q.distance_m;
-    if (scale >= SLUT_DBL_MIN_NORMAL && scale <= 1e300) return scale * B;
-    return std::exp(std::log(q.sigma_s_per_m) + std::log(SLUT_INV_4PI * 2.0) + std::log(q.intensity_W_per_sr) -
-                    std::log(q.distance_m) + std::log(B));
+    // No extinction: the bracket at optical distance 0, and no e^{−σ_t D}.
+    return airlight_radiance_from_bracket(q, 0.0, slut_hg_airlight_bracket(0.0, sh, ch, s_over_D, phase_g, 1.0));
 }
 
 double airlight_hg_radiance_distant(const AirlightQuery &q, double phase_g) {

@@ -15,10 +15,6 @@ void require(bool ok, const char *message) {
     if (!ok) throw std::invalid_argument(message);
 }
 
-void check_rgb(const Rgb &sigma, const char *message) {
-    for (double s : sigma) require(s >= 0.0 && std::isfinite(s), message);
-}
-
 // The anisotropic airlight of one channel (q validated, phase_g ≠ 0).
 double airlight_hg(const AirlightQuery &q, double phase_g) {
     const double half = std::fmin(0.5 * q.gamma_rad, SLUT_PIO2_HI);
@@ -27,14 +23,9 @@ double airlight_hg(const AirlightQuery &q, double phase_g) {
     if (!(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0)) return 0.0;
     if (!(sigma_t * q.distance_m < 1e300)) return 0.0;
     const double s_over_D = (q.length_m > 1e300) ? HUGE_VAL : q.length_m / q.distance_m;
-    const double B = slut_hg_airlight_bracket(sigma_t * q.distance_m, sin_half, cos_half, s_over_D, phase_g, 1.0);
-    if (!(B > 0.0)) return 0.0;
-    if (!std::isfinite(B)) return HUGE_VAL;
-    const double scale = q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * 2.0 / q.distance_m *
-                         std::exp(-sigma_t * q.distance_m);
-    if (scale >= SLUT_DBL_MIN_NORMAL && scale <= 1e300) return scale * B;
-    return std::exp(std::log(q.sigma_s_per_m) + std::log(SLUT_INV_4PI * 2.0) + std::log(q.intensity_W_per_sr) -
-                    std::log(q.distance_m) - sigma_t * q.distance_m + std::log(B));
+    return airlight_radiance_from_bracket(
+        q, sigma_t * q.distance_m,
+        slut_hg_airlight_bracket(sigma_t * q.distance_m, sin_half, cos_half, s_over_D, phase_g, 1.0));
 }
 
 // The near light of one channel (q validated, phase_g ≠ 0): the parameters as
@@ -67,46 +58,56 @@ void check_phase_g(double phase_g) {
             "phase_g (Henyey-Greenstein asymmetry) must be finite and within [-0.999999, 0.999999]");
 }
 
-double airlight_radiance_exact(const AirlightQuery &q, double phase_g) {
+void check_rgb_coefficients(const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m) {
+    for (double s : sigma_s_per_m)
+        require(s >= 0.0 && std::isfinite(s), "sigma_s must be finite and >= 0 (1/m) in every channel");
+    for (double s : sigma_a_per_m)
+        require(s >= 0.0 && std::isfinite(s), "sigma_a must be finite and >= 0 (1/m) in every channel");
+}
+
+double airlight_radiance_from_bracket(const AirlightQuery &q, double optical_distance, double B) {
+    if (!(B > 0.0)) return 0.0;
+    if (!std::isfinite(B)) return HUGE_VAL;
+    const double scale =
+        q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * 2.0 / q.distance_m * std::exp(-optical_distance);
+    if (scale >= SLUT_DBL_MIN_NORMAL && scale <= 1e300) return scale * B;
+    return std::exp(std::log(q.sigma_s_per_m) + std::log(SLUT_INV_4PI * 2.0) + std::log(q.intensity_W_per_sr) -
+                    std::log(q.distance_m) - optical_distance + std::log(B));
+}
+
+namespace {
+
+// The radiance of one channel with the phase: g = 0 the isotropic function's (bit for bit),
+// else the query checked (the isotropic function's checks) and the anisotropic one's.
+template <class Query>
+double with_phase(const Query &q, double phase_g, double (*isotropic)(const Query &), void (*check)(const Query &),
+                  double (*anisotropic)(const Query &, double)) {
     check_phase_g(phase_g);
-    if (phase_g == 0.0) return airlight_radiance_exact(q);
-    check_airlight_query(q);
-    return airlight_hg(q, phase_g);
+    if (phase_g == 0.0) return isotropic(q);
+    check(q);
+    return anisotropic(q, phase_g);
+}
+
+} // namespace
+
+double airlight_radiance_exact(const AirlightQuery &q, double phase_g) {
+    return with_phase<AirlightQuery>(q, phase_g, airlight_radiance_exact, check_airlight_query, airlight_hg);
 }
 
 Rgb airlight_radiance_exact_rgb(const AirlightQuery &q, const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m,
                                 double phase_g) {
-    check_rgb(sigma_s_per_m, "sigma_s must be finite and >= 0 (1/m) in every channel");
-    check_rgb(sigma_a_per_m, "sigma_a must be finite and >= 0 (1/m) in every channel");
-    Rgb out{};
-    for (int c = 0; c < 3; ++c) {
-        AirlightQuery channel = q;
-        channel.sigma_s_per_m = sigma_s_per_m[c];
-        channel.sigma_a_per_m = sigma_a_per_m[c];
-        out[c] = airlight_radiance_exact(channel, phase_g);
-    }
-    return out;
+    return per_channel(q, sigma_s_per_m, sigma_a_per_m,
+                       [phase_g](const AirlightQuery &one) { return airlight_radiance_exact(one, phase_g); });
 }
 
 double near_light_radiance_exact(const NearLightQuery &q, double phase_g) {
-    check_phase_g(phase_g);
-    if (phase_g == 0.0) return near_light_radiance_exact(q);
-    check_near_light_query(q);
-    return near_light_hg(q, phase_g);
+    return with_phase<NearLightQuery>(q, phase_g, near_light_radiance_exact, check_near_light_query, near_light_hg);
 }
 
 Rgb near_light_radiance_exact_rgb(const NearLightQuery &q, const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m,
                                   double phase_g) {
-    check_rgb(sigma_s_per_m, "sigma_s must be finite and >= 0 (1/m) in every channel");
-    check_rgb(sigma_a_per_m, "sigma_a must be finite and >= 0 (1/m) in every channel");
-    Rgb out{};
-    for (int c = 0; c < 3; ++c) {
-        NearLightQuery channel = q;
-        channel.sigma_s_per_m = sigma_s_per_m[c];
-        channel.sigma_a_per_m = sigma_a_per_m[c];
-        out[c] = near_light_radiance_exact(channel, phase_g);
-    }
-    return out;
+    return per_channel(q, sigma_s_per_m, sigma_a_per_m,
+                       [phase_g](const NearLightQuery &one) { return near_light_radiance_exact(one, phase_g); });
 }
 
 } // namespace scatterlut

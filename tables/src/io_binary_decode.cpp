@@ -150,7 +150,7 @@ Axis parse_axis(const Decoder &d, const uint8_t *p, size_t n, size_t index) {
     const std::string label = where + " ('" + a.name + "')";
     if (!warp_ok)
         d.fail(label + ": unknown warp id " + std::to_string(warp) + " (this reader knows 0 to " +
-               std::to_string(SLUT_WARP_COUNT - 1) + ": linear, log, log1p, asinh_cot, sqrt1p, loglin, nl_qodds)");
+               std::to_string(SLUT_WARP_COUNT - 1) + ": linear, log, log1p, asinh_cot, sqrt1p, loglin, nl_qodds, asinh_cot_peak)");
     if (a.map.count < 2)
         d.fail(label + ": count " + std::to_string(a.map.count) + " is invalid (need 2 <= count <= 2^31-1)");
     if (!std::isfinite(a.map.min) || !std::isfinite(a.map.max) || !std::isfinite(a.map.scale))

@@ -64,6 +64,7 @@ const char *warp_name(int warp) {
     case SLUT_WARP_SQRT1P: return "sqrt1p";
     case SLUT_WARP_LOGLIN: return "loglin";
     case SLUT_WARP_NL_QODDS: return "nl_qodds";
+    case SLUT_WARP_ASINH_COT_PEAK: return "asinh_cot_peak";
     default: return "unknown";
     }
 }
@@ -150,6 +151,11 @@ void Table::check_consistent() const {
             break;
         case SLUT_WARP_NL_QODDS:
             if (!(m.min > 0)) fail(label + ": warp 'nl_qodds' needs min > 0 (min = " + num(m.min) + ")");
+            break;
+        case SLUT_WARP_ASINH_COT_PEAK:
+            if (!(m.min > 0) || !(m.max <= SLUT_PIO2_HI) || !(m.scale > 0))
+                fail(label + ": warp 'asinh_cot_peak' needs 0 < min, max <= pi/2 and scale > 0 (min = " + num(m.min) +
+                     ", max = " + num(m.max) + ", scale = " + num(m.scale) + ")");
             break;
         default: break;
         }

@@ -14,7 +14,7 @@
 const MAGIC = [0x53, 0x4c, 0x55, 0x54, 0x54, 0x42, 0x4c, 0x00]; // "SLUTTBL\0"
 const FORMAT_MAJOR = 1;
 const FORMAT_MINOR = 1;
-export const WARP_NAMES = ['linear', 'log', 'log1p', 'asinh_cot', 'sqrt1p', 'loglin', 'nl_qodds'];
+export const WARP_NAMES = ['linear', 'log', 'log1p', 'asinh_cot', 'sqrt1p', 'loglin', 'nl_qodds', 'asinh_cot_peak'];
 const STORAGE = { 1: 'f16', 2: 'f32', 3: 'f64' };
 const ENCODING = { 0: 'linear', 1: 'log' };
 

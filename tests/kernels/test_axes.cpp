@@ -29,6 +29,7 @@ const double kInf = std::numeric_limits<double>::infinity();
 TEST(AxisMaps, RoundTripAndTexelCentres) {
     const slut_axis axes[] = {{0.0, 64.0, 1e-7, SLUT_WARP_LOG1P, 512},
                               {1e-3, SLUT_PIO2_HI, 0.0, SLUT_WARP_ASINH_COT, 256},
+                              {1e-3, SLUT_PIO2_HI, 0.0025, SLUT_WARP_ASINH_COT_PEAK, 256},
                               {1e-3, 100.0, 0.0, SLUT_WARP_LOG, 33},
                               {-1.0, 1.0, 0.0, SLUT_WARP_SQRT1P, 65},
                               {-2.0, 3.0, 0.0, SLUT_WARP_LINEAR, 9}};
@@ -65,6 +66,7 @@ TEST(AxisMaps, BeyondTheEndsClampToTheEndNodes) {
     const slut_axis axes[] = {{1.26, 12.6, 0.3, SLUT_WARP_LOG1P, 17},
                               {1e-3, 100.0, 0.0, SLUT_WARP_LOG, 9},
                               {1e-3, SLUT_PIO2_HI, 0.0, SLUT_WARP_ASINH_COT, 9},
+                              {1e-3, SLUT_PIO2_HI, 0.05, SLUT_WARP_ASINH_COT_PEAK, 9},
                               {-0.99, 1.0, 0.0, SLUT_WARP_SQRT1P, 9},
                               {-2.0, 3.0, 0.0, SLUT_WARP_LINEAR, 9}};
     const double nan = std::numeric_limits<double>::quiet_NaN(), inf = HUGE_VAL;
@@ -105,6 +107,55 @@ TEST(NearLightAxes, LoglinRoundTrips) {
             EXPECT_LE(slut_test::rel_err(slut_loglin_inverse(y, s), p), 1e-14) << "s=" << s << " p=" << p;
         }
     }
+}
+
+// asinh_cot_peak (the anisotropic airlight's w axis for g > 0): g(p) = −asinh(cot p) −
+// asinh((π/2 − p)/s). Round trips over the w axes the planner makes (s = (1 − g)/(2(1 + g))
+// for g = 0.3 … 0.999, w_min down to 1e-9; x to 1e-14 plus the parameter's rounding); the inverse checked on the definition (std::asinh,
+// not the forward map's code) to 1e-14, p → 0 included (the inverse works in cot p); and the
+// point of the warp: a fifth of the nodes lie within v = π/2 − w < 10 s, on the forward peak,
+// where ASINH_COT puts under 1 %.
+TEST(AirlightAxes, PeakWarpRoundTripsAndResolvesThePeak) {
+    std::mt19937_64 rng(12);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    for (double s : {0.27, 0.05, 0.0025, 2.5e-4}) {
+        for (double w_min : {1e-3, 1e-9}) {
+            const slut_axis a = {w_min, SLUT_PIO2_HI, s, SLUT_WARP_ASINH_COT_PEAK, 128};
+            EXPECT_EQ(slut_param_from_unit(&a, 0.0), a.min);
+            EXPECT_EQ(slut_param_from_unit(&a, 1.0), a.max);
+            // x → p → x: p near π/2 is a double of ulp 2.2e-16, which moves x by up to
+            // 2.2e-16·|g'(p)|/(g1 − g0) ≤ 2.2e-16/(s·(g1 − g0)) (4e-14 at s = 2.5e-4): the
+            // parameter's rounding, not the map's.
+            double g0, g1;
+            slut_axis_warped_ends(&a, &g0, &g1);
+            const double x_tolerance = 1e-14 + 2.0 * 2.3e-16 / (s * (g1 - g0));
+            for (int k = 0; k < 2000; ++k) {
+                const double x = U(rng);
+                const double p = slut_param_from_unit(&a, x);
+                EXPECT_NEAR(slut_unit_from_param(&a, p), x, x_tolerance) << "s=" << s << " x=" << x;
+                const double q = a.min * std::pow(a.max / a.min, U(rng));
+                EXPECT_LE(slut_test::rel_err(slut_param_from_unit(&a, slut_unit_from_param(&a, q)), q), 1e-13)
+                    << "s=" << s << " p=" << q;
+            }
+        }
+        for (double p : {1e-9, 1e-3, 0.5, 1.5, 1.5707, SLUT_PIO2_HI - 1e-9}) {
+            const double y = -std::asinh(std::cos(p) / std::sin(p)) - std::asinh((SLUT_PIO2_HI - p) / s);
+            EXPECT_LE(slut_test::rel_err(slut_asinh_cot_peak_inverse(y, s), p), 1e-14) << "s=" << s << " p=" << p;
+        }
+        EXPECT_EQ(slut_asinh_cot_peak_inverse(0.0, s), SLUT_PIO2_HI);
+    }
+    const double s = 0.5 * (1 - 0.99) / (1 + 0.99); // the planner's s at g = 0.99
+    const slut_axis peak = {1e-3, SLUT_PIO2_HI, s, SLUT_WARP_ASINH_COT_PEAK, 256};
+    const slut_axis plain = {1e-3, SLUT_PIO2_HI, 0.0, SLUT_WARP_ASINH_COT, 256};
+    int on_peak = 0, on_peak_plain = 0;
+    for (int i = 0; i < 256; ++i) {
+        on_peak += SLUT_PIO2_HI - slut_axis_node(&peak, i) < 10 * s;
+        on_peak_plain += SLUT_PIO2_HI - slut_axis_node(&plain, i) < 10 * s;
+    }
+    EXPECT_GE(on_peak, 256 / 5);
+    EXPECT_LE(on_peak_plain, 2);
+    std::printf("nodes within v < 10 s (s = %.3g) of 256: asinh_cot_peak %d, asinh_cot %d\n", s, on_peak,
+                on_peak_plain);
 }
 
 // The slab axis q (warp nl_qodds): σ(T, g, S) = T·(T H∞)·q/(1 − q) with q = H(S)/H(∞).

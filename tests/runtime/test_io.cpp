@@ -315,7 +315,7 @@ TEST(TableNames, RoundTrip) {
         ASSERT_TRUE(encoding_from_string(to_string(e), &back));
         EXPECT_EQ(back, e);
     }
-    const char *names[] = {"linear", "log", "log1p", "asinh_cot", "sqrt1p", "loglin", "nl_qodds"};
+    const char *names[] = {"linear", "log", "log1p", "asinh_cot", "sqrt1p", "loglin", "nl_qodds", "asinh_cot_peak"};
     static_assert(sizeof(names) / sizeof(names[0]) == SLUT_WARP_COUNT, "one name per warp id");
     for (int w = 0; w < SLUT_WARP_COUNT; ++w) {
         EXPECT_STREQ(warp_name(w), names[w]);
@@ -349,7 +349,8 @@ TEST(TableCheck, ClearMessages) {
     { Table u = t; u.values.pop_back(); expect(u, "values holds 69 numbers, expected 70"); }
     { Table u = t; u.axes[0].map.min = 60; expect(u, "min 60 must be less than max 50"); }
     { Table u = t; u.axes[1].map.count = 1; expect(u, "axis 1 ('w'): count 1 is invalid"); }
-    { Table u = t; u.axes[0].map.warp = 7; expect(u, "unknown warp id 7"); }
+    { Table u = t; u.axes[0].map.warp = SLUT_WARP_COUNT; expect(u, "unknown warp id " + std::to_string(SLUT_WARP_COUNT)); }
+    { Table u = t; u.axes[1].map.warp = SLUT_WARP_ASINH_COT_PEAK; expect(u, "warp 'asinh_cot_peak' needs 0 < min, max <= pi/2 and scale > 0"); }
     { Table u = t; u.axes[0].map.scale = 0; expect(u, "warp 'log1p' needs scale > 0"); }
     { Table u = t; u.axes[1].map.min = 0; expect(u, "warp 'asinh_cot' needs min > 0"); }
     { Table u = t; u.axes[0].map.max = INFINITY; expect(u, "is not finite"); }

@@ -1,7 +1,7 @@
 // The anisotropic airlight table's runtime facet (kinds/runtime_kind.hpp): its sampler,
 // AirlightHgTable (tables/src/airlight_hg.cpp). It lists no eval quantity of its own: eval
 // answers "airlight" queries with "phase_g" ≠ 0 from a loaded table of that g (eval.cpp).
-// Its descriptor: kinds/airlight_hg_kind.cpp.
+// Its descriptor: kinds/airlight_kind.cpp (the airlight kind with anisotropic = true).
 #include <memory>
 #include <stdexcept>
 #include <string>

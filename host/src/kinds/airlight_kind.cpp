@@ -1,8 +1,11 @@
-// The airlight F table (Sun et al. 2005): ln G̃(u, w) for a viewer and a point light inside
-// a medium. Its generator: generate_airlight.cpp; its runtime: tables/src/airlight.cpp.
+// The airlight tables (Sun et al. 2005): ln G̃_g(u, w) for a viewer and a point light inside
+// a medium, for one Henyey–Greenstein g. One class serves both kinds, parameterised by the
+// phase: the isotropic F table (airlight_F: the media of g = 0, one table) and the
+// anisotropic F_g tables (airlight_Fg: one table per distinct g ≠ 0, per_phase()). Its
+// generator: generate_airlight.cpp (kernels/airlight_F.cl); its runtimes:
+// tables/src/airlight.cpp (AirlightTable) and tables/src/airlight_hg.cpp (AirlightHgTable).
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <string>
 
@@ -13,83 +16,128 @@
 #include "scene_queries.hpp"
 #include "text_format.hpp"
 #include "scatterlut/airlight.hpp"
-
-extern "C" {
-#include "slut_airlight.h"
-}
+#include "scatterlut/airlight_hg.hpp"
 
 namespace scatterlut {
 
-const RuntimeKind &airlight_runtime_kind(); // kinds/airlight_runtime.cpp
+const RuntimeKind &airlight_runtime_kind();    // kinds/airlight_runtime.cpp
+const RuntimeKind &airlight_hg_runtime_kind(); // kinds/airlight_hg_runtime.cpp
 
 namespace {
 
-// The airlight radiance is σ_s p I0 · 2/(D sin γ) · [a − b] with a = e^{−σ_t D}(π/2 − v2) G̃(A1, v2)
-// and b = e^{−σ_t(s+d(s))}(π/2 − v1) G̃(A1, v1); the runtime uses this difference only where
-// b ≤ a/2 (slut_airlight_from_gs; elsewhere the θ-integral). Relative errors ε on both G̃
-// samples give |δ(a − b)| ≤ ε(a + b) ≤ 3ε(a − b): the table must hold a third of the
-// radiance target.
+// The airlight radiance is σ_s/(4π)·I0·2e^{−σ_t D}/(D sin γ)·[a − b] with a = w2 G̃_g(u, w2)
+// and b = e^{−σ_t Δ} w1 G̃_g(u, w1); the runtime uses this difference only where b ≤ a/2
+// (elsewhere the segment's integral). Relative errors ε on both G̃_g samples give
+// |δ(a − b)| ≤ ε(a + b) ≤ 3ε(a − b): the table must hold a third of the radiance target.
 constexpr double kAirlightRadiancePerTableError = 3.0;
 
-// The smallest u from which on the runtime's large-u series (slut_gs_large_u, used beyond
-// the table's u_max) holds half of `target`, measured against the quadrature at u, 1.3u and
-// 2u on 48 log-spaced w in [w_min, π/2] (its error falls with u like k!/u^k at the
-// smallest term). The airlight table must reach at least this u.
-double large_u_series_onset(double target, double w_min) {
-    for (double u = 1.0; u < 1e4; u *= 1.05) {
-        double worst = 0;
-        for (double uu : {u, 1.3 * u, 2.0 * u})
-            for (int i = 0; i < 48; ++i) {
-                const double w = w_min * std::pow(SLUT_PIO2_HI / w_min, i / 47.0);
-                const double exact = slut_gs_quadrature(uu, w, 1.0);
-                worst = std::max(worst, std::fabs(slut_gs_large_u(uu, w) - exact) / exact);
-            }
-        if (worst <= 0.5 * target) return u;
-    }
-    return 1e4;
-}
-
-// What the scene's pairs ask: u up to σ_t·D_max, at the strictest error.
+// What the scene's pairs of one g ask: u up to σ_t·D_max (σ_t of the densest channel: the
+// dimensionless table serves every channel below it), at the strictest error.
 struct Demand {
+    double phase_g = 0;
     double u_max = 0;
     double relative_error = HUGE_VAL;
 };
 
 const AirlightPlan &plan_of(const std::any &plan) { return std::any_cast<const AirlightPlan &>(plan); }
 AirlightPlan &plan_of(std::any &plan) { return std::any_cast<AirlightPlan &>(plan); }
-const std::vector<AirlightQuery> &queries_of(const RadianceQueries &q) {
-    return std::any_cast<const std::vector<AirlightQuery> &>(q.queries);
+
+// The queries of a table: the query and the g it is for.
+struct PhaseQueries {
+    std::vector<AirlightQuery> queries;
+    double phase_g = 0;
+};
+const PhaseQueries &queries_of(const RadianceQueries &q) { return std::any_cast<const PhaseQueries &>(q.queries); }
+
+// The scene's media of asymmetry g the viewer is inside, one grey copy per colour channel
+// (so that every channel's σ is queried); lights that name a coloured medium light its copies.
+Scene media_of_phase(const Scene &scene, double g) {
+    Scene only = scene;
+    only.media.clear();
+    for (const SceneMedium &m : scene.media) {
+        if (m.phase_g != g || !m.viewer_inside) continue;
+        for (int c = 0; c < (m.coloured ? 3 : 1); ++c) {
+            SceneMedium one = m;
+            one.coloured = false;
+            one.sigma_s_per_m = m.sigma_s_rgb_per_m[static_cast<size_t>(c)];
+            one.sigma_a_per_m = m.sigma_a_rgb_per_m[static_cast<size_t>(c)];
+            if (m.coloured) one.name += "." + std::string(1, "rgb"[c]);
+            for (SceneLight &l : only.lights)
+                if (!l.media.empty() && std::find(l.media.begin(), l.media.end(), m.name) != l.media.end() &&
+                    one.name != m.name)
+                    l.media.push_back(one.name);
+            if (one.sigma_s_per_m > 0.0) only.media.push_back(one);
+        }
+    }
+    return only;
+}
+
+// The runtime class of a table of either kind (Runtime: AirlightTable or AirlightHgTable).
+template <class Runtime>
+std::function<double(size_t)> radiance_of(const Table &table, const PhaseQueries *q) {
+    auto air = std::make_shared<Runtime>(table);
+    return [air, q](size_t k) { return air->radiance(q->queries[k]); };
+}
+template <class Runtime>
+std::function<double()> lookups_of(const Table &table, const std::vector<double> *params, size_t count) {
+    auto air = std::make_shared<Runtime>(table);
+    return [air, params, count] {
+        const std::vector<double> &pp = *params;
+        double sum = 0;
+        for (size_t i = 0; i < count; ++i) sum += air->scaled_tail(pp[2 * i], pp[2 * i + 1]);
+        return sum;
+    };
 }
 
 class AirlightKind final : public TableKind {
 public:
-    const RuntimeKind &runtime() const override { return airlight_runtime_kind(); }
+    // anisotropic: the kind of the media with g ≠ 0 (airlight_Fg), else of those with g = 0.
+    explicit AirlightKind(bool anisotropic) : anisotropic_(anisotropic) {}
+
+    const RuntimeKind &runtime() const override {
+        return anisotropic_ ? airlight_hg_runtime_kind() : airlight_runtime_kind();
+    }
+    bool per_phase() const override { return anisotropic_; }
 
     void add_demand(const Scene &, const SceneMedium &m, const SceneLight &l, std::any &state,
                     PlannedTable &t) const override {
-        if (!m.viewer_inside || !m.isotropic()) return; // g ≠ 0: the anisotropic kind's (airlight_hg_kind.cpp)
+        if (!m.viewer_inside || m.isotropic() == anisotropic_) return;
         if (!state.has_value()) state = Demand{};
         Demand &d = std::any_cast<Demand &>(state);
+        d.phase_g = m.phase_g;
         const double sigma_t = m.sigma_t_per_m(), d_hi = l.distance_m.max;
         d.u_max = std::max(d.u_max, sigma_t * d_hi);
         d.relative_error = std::min(d.relative_error, m.relative_error);
-        t.requested_by.push_back({m.name, l.name,
-                                  "viewer inside, light at D <= " + fmt("%g", d_hi) +
-                                      " m: u up to sigma_t*D_max = " + fmt("%.4g", sigma_t * d_hi)});
+        t.requested_by.push_back(
+            {m.name, l.name,
+             "viewer inside, " + (anisotropic_ ? "phase_g = " + fmt("%g", m.phase_g) + ", " : std::string()) +
+                 "light at D <= " + fmt("%g", d_hi) + " m: u up to sigma_t*D_max = " + fmt("%.4g", sigma_t * d_hi) +
+                 (m.coloured ? " (the densest channel; the others lie below)" : "")});
     }
 
     void finish_plan(const Scene &, const std::any &state, const AirlightOverrides &overrides,
                      PlannedTable &t) const override {
         const Demand &d = std::any_cast<const Demand &>(state);
+        const double g = d.phase_g;
+        const std::string at_g = anisotropic_ ? " at g = " + fmt("%g", g) : "";
         AirlightPlan a;
+        a.phase_g = g;
+        if (anisotropic_) {
+            t.phase_g = g;
+            t.stem = airlight_fg_stem(g);
+        }
         t.target_rel = d.relative_error / kAirlightRadiancePerTableError;
-        if (overrides.w_min) a.w_min = *overrides.w_min;
-        // u up to σ_t·D_max, and at least to where the large-u series takes over at the target.
-        const double onset = large_u_series_onset(t.target_rel, a.w_min);
+        // w_min: where the small-w form holds half the target (g < 0 needs smaller w: the
+        // backward peak); u_max: the scene's, raised to where the large-u series holds it.
+        a.w_min = overrides.w_min ? *overrides.w_min : airlight_small_w_min(g, t.target_rel);
+        if (a.w_min < AirlightPlan{}.w_min && !overrides.w_min)
+            t.domain_notes.push_back("w_min lowered to " + fmt("%.3g", a.w_min) +
+                                     ": above it the small-w form misses the target" + at_g + " (measured)");
+        const double onset = airlight_large_u_onset(g, t.target_rel, a.w_min);
         a.u_max = std::max(d.u_max, onset);
         if (d.u_max < onset)
             t.domain_notes.push_back("u_max raised from " + fmt("%.3g", d.u_max) + " to " + fmt("%.3g", onset) +
-                                     ": from there on the large-u series holds the target (measured)");
+                                     ": from there on the large-u series holds the target" + at_g + " (measured)");
         if (overrides.u_max) a.u_max = *overrides.u_max;
         a.n_u = half_count(a.n_u);
         a.n_w = half_count(a.n_w);
@@ -135,66 +183,93 @@ public:
         return measure_airlight_integration(sampler.table(), nodes, reference);
     }
     SamplingStats sampling_error(const RuntimeSampler &sampler, int points, uint64_t seed) const override {
-        return measure_airlight_sampling(dynamic_cast<const SamplerOf<AirlightTable> &>(sampler).runtime, points, seed);
+        if (anisotropic_) {
+            const AirlightHgTable &air = dynamic_cast<const SamplerOf<AirlightHgTable> &>(sampler).runtime;
+            return measure_airlight_sampling(air.table(), [&air](double u, double w) { return air.scaled_tail(u, w); },
+                                             points, seed);
+        }
+        const AirlightTable &air = dynamic_cast<const SamplerOf<AirlightTable> &>(sampler).runtime;
+        return measure_airlight_sampling(air.table(), [&air](double u, double w) { return air.scaled_tail(u, w); },
+                                         points, seed);
     }
 
-    RadianceQueries radiance_queries(const Scene &scene, const std::any &, size_t count,
+    RadianceQueries radiance_queries(const Scene &scene, const std::any &plan, size_t count,
                                      uint64_t seed) const override {
-        std::vector<AirlightQuery> all = sample_airlight_queries(scene, count, seed), kept;
+        const double g = plan_of(plan).phase_g;
+        std::vector<AirlightQuery> all = sample_airlight_queries(media_of_phase(scene, g), count, seed);
         std::vector<double> exact(all.size());
-        parallel_for(static_cast<int>(all.size()),
-                     [&](int i) { exact[static_cast<size_t>(i)] = airlight_radiance_exact(all[static_cast<size_t>(i)]); });
+        parallel_for(static_cast<int>(all.size()), [&](int i) {
+            exact[static_cast<size_t>(i)] = airlight_radiance_exact(all[static_cast<size_t>(i)], g);
+        });
+        PhaseQueries kept;
+        kept.phase_g = g;
         RadianceQueries s;
         for (size_t i = 0; i < all.size(); ++i)
             if (std::isfinite(exact[i]) && exact[i] > 0) {
-                kept.push_back(all[i]);
+                kept.queries.push_back(all[i]);
                 s.exact.push_back(exact[i]);
             }
         s.queries = std::move(kept);
-        s.description = describe_airlight_queries() + "; rays through the light (infinite radiance) left out";
+        s.description = describe_airlight_queries() + (anisotropic_ ? ", phase_g = " + fmt("%g", g) : std::string()) +
+                        ", every colour channel; rays through the light (infinite radiance) left out";
         return s;
     }
 
     std::vector<RuntimeMethod> runtime_methods(const Table &table, const RadianceQueries &qs) const override {
-        const std::vector<AirlightQuery> *q = &queries_of(qs);
-        return {{"exact", "quadrature per call (airlight_radiance_exact)", true,
-                 [q](size_t k) { return airlight_radiance_exact((*q)[k]); }},
-                {"table", "two samples of the planned F table (AirlightTable::radiance)", false, table_radiance(table, qs)},
-                {"no_extinction", "closed form without extinction, Macklin 2010 (airlight_radiance_no_extinction)", false,
-                 [q](size_t k) { return airlight_radiance_no_extinction((*q)[k]); }},
-                {"attenuated",
-                 "the same times e^(-sigma_t D), an engine fudge (airlight_radiance_no_extinction_attenuated)", false,
-                 [q](size_t k) { return airlight_radiance_no_extinction_attenuated((*q)[k]); }}};
+        const PhaseQueries *q = &queries_of(qs);
+        std::vector<RuntimeMethod> m = {
+            {"exact", "quadrature per call (airlight_radiance_exact with phase_g)", true,
+             [q](size_t k) { return airlight_radiance_exact(q->queries[k], q->phase_g); }},
+            {"table", std::string("two samples of the planned table (") + runtime_class() + "::radiance)", false,
+             table_radiance(table, qs)}};
+        if (anisotropic_) { // the closed forms with the phase
+            m.push_back({"thin", "no extinction along either leg, with the phase (airlight_hg_radiance_thin)", false,
+                         [q](size_t k) { return airlight_hg_radiance_thin(q->queries[k], q->phase_g); }});
+            m.push_back({"distant",
+                         "distant light, scattering angle gamma along the ray (airlight_hg_radiance_distant)", false,
+                         [q](size_t k) { return airlight_hg_radiance_distant(q->queries[k], q->phase_g); }});
+        } else { // the isotropic closed forms engines use
+            m.push_back({"no_extinction", "closed form without extinction, Macklin 2010 (airlight_radiance_no_extinction)",
+                         false, [q](size_t k) { return airlight_radiance_no_extinction(q->queries[k]); }});
+            m.push_back({"attenuated",
+                         "the same times e^(-sigma_t D), an engine fudge (airlight_radiance_no_extinction_attenuated)",
+                         false, [q](size_t k) { return airlight_radiance_no_extinction_attenuated(q->queries[k]); }});
+        }
+        return m;
     }
     std::function<double(size_t)> table_radiance(const Table &table, const RadianceQueries &qs) const override {
-        auto air = std::make_shared<AirlightTable>(table);
-        const std::vector<AirlightQuery> *q = &queries_of(qs);
-        return [air, q](size_t k) { return air->radiance((*q)[k]); };
+        return anisotropic_ ? radiance_of<AirlightHgTable>(table, &queries_of(qs))
+                            : radiance_of<AirlightTable>(table, &queries_of(qs));
     }
     std::function<double()> lookup_loop(const Table &table, const std::vector<double> &p, size_t count) const override {
-        auto air = std::make_shared<AirlightTable>(table);
-        const std::vector<double> *params = &p;
-        return [air, params, count] {
-            const std::vector<double> &pp = *params;
-            double sum = 0;
-            for (size_t i = 0; i < count; ++i) sum += air->scaled_tail(pp[2 * i], pp[2 * i + 1]);
-            return sum;
-        };
+        return anisotropic_ ? lookups_of<AirlightHgTable>(table, &p, count) : lookups_of<AirlightTable>(table, &p, count);
     }
-    const char *runtime_class() const override { return "AirlightTable"; }
+    const char *runtime_class() const override { return anisotropic_ ? "AirlightHgTable" : "AirlightTable"; }
     std::string methods_note() const override {
+        if (anisotropic_)
+            return " With a Henyey-Greenstein phase the closed forms are approximations: thin drops the extinction "
+                   "along both legs (exact as sigma_t -> 0, an overestimate otherwise); distant keeps the scattering "
+                   "angle at gamma along the ray and 1/D^2 (Gath 2008 eq. 5 with the phase), fair for a ray much "
+                   "shorter than D.";
         return " The thin-medium form (Gath 2008 §4.2) and the distant-light limit (Gath 2008 eq. 5) are near-light "
                "methods (a light outside the medium); for a viewer and a light inside the medium the alternatives to "
                "the table are the closed forms engines use (Macklin 2010): no_extinction drops the attenuation along "
                "both legs of the light path, attenuated applies e^(-sigma_t D) to the whole ray.";
     }
 
+private:
+    bool anisotropic_;
 };
 
 } // namespace
 
 const TableKind &airlight_table_kind() {
-    static const AirlightKind kind;
+    static const AirlightKind kind(false);
+    return kind;
+}
+
+const TableKind &airlight_hg_table_kind() {
+    static const AirlightKind kind(true);
     return kind;
 }
 

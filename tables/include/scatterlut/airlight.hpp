@@ -46,6 +46,13 @@ double airlight_radiance_exact(const AirlightQuery &q); // quadrature, ~1e-13 re
 double airlight_radiance_no_extinction(const AirlightQuery &q);
 double airlight_radiance_no_extinction_attenuated(const AirlightQuery &q);
 
+namespace detail {
+// The front-end the airlight runtimes share (AirlightTable, AirlightHgTable): the query
+// checked (check_airlight_query) and its geometry's near end, unscaled
+// (slut_airlight_setup_near_end_unscaled, kernels/slut_airlight.h).
+slut_airlight_geometry airlight_query_near_end(const AirlightQuery &q);
+} // namespace detail
+
 // A loaded F table (kind "airlight_F"): axis 0 u ∈ [0, u_max], axis 1 w = π/2 − v ∈
 // [w_min, π/2], channel 0 = ln G̃ (see kernels/slut_airlight.h).
 class AirlightTable {

@@ -6,7 +6,8 @@
 //
 // (kernels/slut_airlight_hg.h, docs/PHYSICS.md §1.4: in Sun et al. 2005's substitution the
 // scattering angle is exactly 2ξ). Axes as the isotropic table: u = σ_t·D·sin γ ∈ [0, u_max]
-// (LOG1P warp), w = π/2 − v ∈ [w_min, π/2] (ASINH_COT warp); beyond them the asymptotic
+// (LOG1P warp), w = π/2 − v ∈ [w_min, π/2] (ASINH_COT warp; for g > 0 ASINH_COT_PEAK, whose
+// nodes also resolve the forward peak at w → π/2; the sampler reads either from the file); beyond them the asymptotic
 // forms of G̃_g (large u: Watson's series; small w: three terms in tan²w), never a clamp.
 #pragma once
 

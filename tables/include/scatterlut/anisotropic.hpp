@@ -12,6 +12,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 
 #include "scatterlut/airlight.hpp"
 #include "scatterlut/nearlight.hpp"
@@ -34,6 +35,29 @@ double airlight_radiance_exact(const AirlightQuery &q, double phase_g);
 // that is dense are independent evaluations: neither affects the other.
 Rgb airlight_radiance_exact_rgb(const AirlightQuery &q, const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m,
                                 double phase_g);
+
+// The per-channel form of a one-channel radiance f(Query): f of a copy of q with channel c's
+// σ_s and σ_a (1/m), for c = r, g, b; throws std::invalid_argument unless every coefficient
+// is finite and ≥ 0. The one loop of every *_rgb entry point.
+void check_rgb_coefficients(const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m);
+template <class Query, class OneChannel>
+Rgb per_channel(const Query &q, const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m, OneChannel f) {
+    check_rgb_coefficients(sigma_s_per_m, sigma_a_per_m);
+    Rgb out{};
+    for (size_t c = 0; c < 3; ++c) {
+        Query channel = q;
+        channel.sigma_s_per_m = sigma_s_per_m[c];
+        channel.sigma_a_per_m = sigma_a_per_m[c];
+        out[c] = f(channel);
+    }
+    return out;
+}
+
+// The airlight radiance from the bracket B = (1/sin γ)∫ψ_g(2ξ)e^{−u tan ξ}… of Sun's form
+// (slut_hg_airlight_bracket, or the table's two samples): σ_s/(4π)·I0·(2/D)·e^{−τ}·B with
+// τ = optical_distance (σ_t·D; 0 for the extinction-free form), through logarithms where the
+// plain product would leave the double range. 0 for B ≤ 0 or NaN, +inf for B = +inf.
+double airlight_radiance_from_bracket(const AirlightQuery &q, double optical_distance, double B);
 
 // Near-light radiance in W/(m²·sr) with the phase of phase_g (exact quadrature along the
 // refracted view ray, ~1e-13 relative): same units, checks, refraction and Fresnel options as

@@ -51,7 +51,7 @@ enum class Encoding : uint32_t {
 const char *to_string(Encoding e);
 bool encoding_from_string(const std::string &name, Encoding *out);
 
-const char *warp_name(int warp); // "linear", "log", "log1p", "asinh_cot", "sqrt1p", "loglin", "nl_qodds"
+const char *warp_name(int warp); // "linear", "log", "log1p", "asinh_cot", "sqrt1p", "loglin", "nl_qodds", "asinh_cot_peak"
 bool warp_from_name(const std::string &name, int *out);
 
 struct Axis {
