@@ -1,5 +1,7 @@
-# cmake -DSCATTERLUT=… -DRENDER_FOG=… -DWORK_DIR=… -P run_render.cmake
-# Generates the default tables into WORK_DIR/tables, renders WORK_DIR/{table,exact}.png.
+# cmake -DSCATTERLUT=… -DRENDER_FOG=… -DWORK_DIR=… [-DSCENE_FORWARD=…/fog_forward.toml] -P run_render.cmake
+# Generates the default tables into WORK_DIR/tables, renders WORK_DIR/{table,exact}.png; with
+# SCENE_FORWARD also that scene's tables into WORK_DIR/tables_forward and the anisotropic
+# coloured picture from its g = 0.85 airlight table, WORK_DIR/{hg_table,hg_exact}.png.
 foreach(var SCATTERLUT RENDER_FOG WORK_DIR)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "run_render.cmake: -D${var}=… is required")
@@ -11,8 +13,18 @@ execute_process(COMMAND ${SCATTERLUT} generate --out ${WORK_DIR}/tables
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "scatterlut generate failed (${rc}):\n${out}\n${err}")
 endif()
+set(hg_table "")
+if(DEFINED SCENE_FORWARD)
+  file(MAKE_DIRECTORY ${WORK_DIR}/tables_forward)
+  execute_process(COMMAND ${SCATTERLUT} generate --scene ${SCENE_FORWARD} --out ${WORK_DIR}/tables_forward
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "scatterlut generate --scene ${SCENE_FORWARD} failed (${rc}):\n${out}\n${err}")
+  endif()
+  set(hg_table ${WORK_DIR}/tables_forward/airlight_Fg_g0.85.slut)
+endif()
 execute_process(COMMAND ${RENDER_FOG} ${WORK_DIR}/tables/airlight_F.slut
-                        ${WORK_DIR}/tables/near_light_E3.slut ${WORK_DIR}
+                        ${WORK_DIR}/tables/near_light_E3.slut ${WORK_DIR} ${hg_table}
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}${err}")
 if(NOT rc EQUAL 0)

@@ -30,8 +30,11 @@
  * and the bracket of the radiance (the segment's integral) is K_g over the segment (below).
  * For g = 0, k_0(T) = 1/(ε̂² + T²): the isotropic integrand.
  *
- * Compiled as C++ by the runtime library and the tests; C99/OpenCL C compatible (no
- * pointers to structs), double precision.
+ * Compiled as C++ by the runtime library and the tests, as OpenCL C by kernels/airlight_Fg.cl
+ * (double precision), and whole, a third time, as GLSL/HLSL in float for the anisotropic
+ * airlight snippet (docs/SHADERS.md; kernels/slut_compat.h lists the subset that keeps to:
+ * structs by value, precision-dependent thresholds as SLUT_* macros, every math call mapped).
+ * The generator's quadratures of F_g and G̃_g sit in an `#ifndef SLUT_SHADER` block.
  */
 #ifndef SLUT_AIRLIGHT_HG_H
 #define SLUT_AIRLIGHT_HG_H
@@ -103,7 +106,7 @@ SLUT_FN double slut_hg_air_panel(double u, double tau, double eps, double g, dou
  * ~1e-15 (every term is positive). û > 1e300: the leading Watson term k_g(τ̂)/û. */
 SLUT_FN double slut_hg_air_integral(double u, double tau, double eps, double z_end, double g, double refine) {
     if (!(z_end > 0.0)) return 0.0;
-    if (!(u <= 1e300)) return slut_hg_air_kernel(g, eps, tau) / u;
+    if (!(u <= SLUT_INFINITE_ABOVE)) return slut_hg_air_kernel(g, eps, tau) / u;
     double ratio = 1.0 + 1.0 / refine;
     double b_hat = eps * fmin(1.0, (1.0 - g) / (1.0 + g));
     double dist = sqrt(tau * tau + b_hat * b_hat);
@@ -115,7 +118,7 @@ SLUT_FN double slut_hg_air_integral(double u, double tau, double eps, double z_e
     for (int panel = 0; panel < 4000 && z < z_end; ++panel) {
         double T = tau + z;
         double psi_bound = (g >= 0.0) ? slut_hg_air_psi(g, eps, T) : psi_back;
-        if (exp(-u * z) * psi_bound / T <= 1e-17 * sum) break;
+        if (exp(-u * z) * psi_bound / T <= SLUT_REMAINDER_NEGLIGIBLE * sum) break;
         double z_next = fmin(z * ratio, z_end);
         sum += slut_hg_air_panel(u, tau, eps, g, z, z_next);
         z = z_next;
@@ -125,24 +128,39 @@ SLUT_FN double slut_hg_air_integral(double u, double tau, double eps, double z_e
 
 /* The scaling of a tail at w ∈ (0, π/2]: λ = max(1, cot w); τ̂ = cot w/λ, ε̂ = 1/λ, and the
  * factor 1/λ of w·G̃_g. */
-SLUT_FN void slut_hg_tail_scaling(double w, double *tau_hat, double *eps_hat, double *inv_lambda) {
+SLUT_STRUCT_BEGIN(slut_hg_tail_scale)
+    double tau_hat;
+    double eps_hat;
+    double inv_lambda;
+SLUT_STRUCT_END(slut_hg_tail_scale);
+
+SLUT_FN slut_hg_tail_scale slut_hg_tail_scaling_of(double w) {
+    slut_hg_tail_scale t;
     double sw = sin(w), cw = cos(w);
     if (cw <= sw) { /* w ≥ π/4: cot w ≤ 1 */
-        *tau_hat = cw / sw;
-        *eps_hat = 1.0;
-        *inv_lambda = 1.0;
+        t.tau_hat = cw / sw;
+        t.eps_hat = 1.0;
+        t.inv_lambda = 1.0;
     } else {
-        *tau_hat = 1.0;
-        *eps_hat = sw / cw;
-        *inv_lambda = sw / cw;
+        t.tau_hat = 1.0;
+        t.eps_hat = sw / cw;
+        t.inv_lambda = sw / cw;
     }
+    return t;
+}
+
+#ifndef SLUT_SHADER /* the generator's, the reference's and the tests' (double only) */
+SLUT_FN void slut_hg_tail_scaling(double w, double *tau_hat, double *eps_hat, double *inv_lambda) {
+    slut_hg_tail_scale t = slut_hg_tail_scaling_of(w);
+    *tau_hat = t.tau_hat;
+    *eps_hat = t.eps_hat;
+    *inv_lambda = t.inv_lambda;
 }
 
 /* w·G̃_g(u, w) by quadrature for every g (g = 0 included: the general rule, for the tests). */
 SLUT_FN double slut_hg_w_gs_quadrature_general(double u, double w, double g, double refine) {
-    double tau_hat, eps_hat, inv_lambda;
-    slut_hg_tail_scaling(w, &tau_hat, &eps_hat, &inv_lambda);
-    return inv_lambda * slut_hg_air_integral(u / inv_lambda, tau_hat, eps_hat, SLUT_HUGE_VAL, g, refine);
+    slut_hg_tail_scale t = slut_hg_tail_scaling_of(w);
+    return t.inv_lambda * slut_hg_air_integral(u / t.inv_lambda, t.tau_hat, t.eps_hat, SLUT_HUGE_VAL, g, refine);
 }
 
 /* w·G̃_g(u, w), u ≥ 0, w ∈ (0, π/2]; g = 0 is slut_w_gs_quadrature. */
@@ -167,6 +185,7 @@ SLUT_FN double slut_hg_F_quadrature(double u, double v, double g) {
     if (g == 0.0) return slut_F_quadrature(u, v);
     return slut_hg_F_quadrature_general(u, v, g);
 }
+#endif /* !SLUT_SHADER */
 
 /* ------------------------------------------------------------ asymptotic forms of G̃_g */
 
@@ -198,12 +217,13 @@ SLUT_FN double slut_hg_gs_small_w(double w, double a, double g) {
 
 /* Taylor coefficients c[0..n−1] of P(z)^α about z = 0, P = p0 + p1 z + p2 z² (p0 > 0):
  * from P y' = α P' y, c[k+1] = ((α − k) p1 c[k] + (2α − k + 1) p2 c[k−1]) / ((k + 1) p0). */
-SLUT_FN void slut_hg_series_pow(double p0, double p1, double p2, double alpha, int n, double *c) {
+SLUT_FN void slut_hg_series_pow(double p0, double p1, double p2, double alpha, int n,
+                                SLUT_OUT_ARRAY(double, c, SLUT_HG_SERIES_TERMS)) {
     c[0] = pow(p0, alpha);
     if (n > 1) c[1] = alpha * p1 * c[0] / p0;
     for (int k = 1; k + 1 < n; ++k)
-        c[k + 1] = ((alpha - (double)k) * p1 * c[k] + (2.0 * alpha - (double)k + 1.0) * p2 * c[k - 1]) /
-                   ((double)(k + 1) * p0);
+        c[k + 1] = ((alpha - SLUT_DOUBLE(k)) * p1 * c[k] + (2.0 * alpha - SLUT_DOUBLE(k) + 1.0) * p2 * c[k - 1]) /
+                   (SLUT_DOUBLE(k + 1) * p0);
 }
 
 /* K_g(û, τ̂, ε̂, ∞) for large û by Watson's lemma: with k_g(τ̂ + z) = Σ_n k_n z^n,
@@ -220,14 +240,16 @@ SLUT_FN double slut_hg_air_integral_large_u(double u, double tau, double eps, do
     slut_hg_series_pow(gm * gm * eps * eps + gp * gp * tau * tau, 2.0 * gp * gp * tau, gp * gp, -1.5,
                        SLUT_HG_SERIES_TERMS, qc);
     /* factor = n!/û^{n+1}. Where τ̂ → 0 (w → π/2) the odd terms vanish, so each term is
-     * compared with the one two places back: the sum stops where the terms begin to grow. */
+     * compared with the one two places back: the sum stops where the terms begin to grow, or
+     * stop being numbers (in float the coefficients of a sharp peak overflow while n!/û^{n+1}
+     * underflows: ∞·0). */
     double sum = 0.0, factor = 1.0 / u, before_last = SLUT_HUGE_VAL, last = SLUT_HUGE_VAL;
     for (int n = 0; n < SLUT_HG_SERIES_TERMS; ++n) {
         double kn = 0.0;
         for (int j = 0; j <= n; ++j) kn += r2c[j] * qc[n - j];
         double term = gm * gp * kn * factor;
-        factor *= (double)(n + 1) / u;
-        if (fabs(term) >= before_last) break;
+        factor *= SLUT_DOUBLE(n + 1) / u;
+        if (!(fabs(term) < before_last)) break;
         sum += term;
         before_last = last;
         last = fabs(term);
@@ -237,9 +259,8 @@ SLUT_FN double slut_hg_air_integral_large_u(double u, double tau, double eps, do
 
 /* G̃_g(u, w) for large u (Watson's lemma above); g = 0 hands to slut_gs_large_u. */
 SLUT_FN double slut_hg_gs_large_u_general(double u, double w, double g) {
-    double tau_hat, eps_hat, inv_lambda;
-    slut_hg_tail_scaling(w, &tau_hat, &eps_hat, &inv_lambda);
-    return inv_lambda * slut_hg_air_integral_large_u(u / inv_lambda, tau_hat, eps_hat, g) / w;
+    slut_hg_tail_scale t = slut_hg_tail_scaling_of(w);
+    return t.inv_lambda * slut_hg_air_integral_large_u(u / t.inv_lambda, t.tau_hat, t.eps_hat, g) / w;
 }
 SLUT_FN double slut_hg_gs_large_u(double u, double w, double g) {
     if (g == 0.0) return slut_gs_large_u(u, w);
@@ -250,13 +271,28 @@ SLUT_FN double slut_hg_gs_large_u(double u, double w, double g) {
 
 /* sin(γ/2) and cos(γ/2) from sin γ ≥ 0 and cos γ without cancellation on either side
  * (as slut_airlight_setup: sin²γ = (1 − cos γ)(1 + cos γ)). */
-SLUT_FN void slut_hg_half_angles(double sin_gamma, double cos_gamma, double *sin_half, double *cos_half) {
+SLUT_STRUCT_BEGIN(slut_hg_half_angle)
+    double sin_half;
+    double cos_half;
+SLUT_STRUCT_END(slut_hg_half_angle);
+
+SLUT_FN slut_hg_half_angle slut_hg_half_angles_of(double sin_gamma, double cos_gamma) {
+    slut_hg_half_angle h;
     double sg = fmax(sin_gamma, 0.0);
     double one_minus_cos = (cos_gamma > 0.0) ? sg * sg / (1.0 + cos_gamma) : 1.0 - cos_gamma;
     double one_plus_cos = (cos_gamma < 0.0) ? sg * sg / (1.0 - cos_gamma) : 1.0 + cos_gamma;
-    *sin_half = sqrt(0.5 * one_minus_cos);
-    *cos_half = sqrt(0.5 * one_plus_cos);
+    h.sin_half = sqrt(0.5 * one_minus_cos);
+    h.cos_half = sqrt(0.5 * one_plus_cos);
+    return h;
 }
+
+#ifndef SLUT_SHADER
+SLUT_FN void slut_hg_half_angles(double sin_gamma, double cos_gamma, double *sin_half, double *cos_half) {
+    slut_hg_half_angle h = slut_hg_half_angles_of(sin_gamma, cos_gamma);
+    *sin_half = h.sin_half;
+    *cos_half = h.cos_half;
+}
+#endif /* !SLUT_SHADER */
 
 /* The dimensionless bracket of the anisotropic airlight,
  *   B_g = (1/sin γ) ∫_{v2}^{v1} ψ_g(2ξ) e^{−u (tan ξ − tan v2)} dξ,
@@ -280,49 +316,119 @@ SLUT_FN double slut_hg_airlight_bracket(double optical_distance, double sin_half
                                         double g, double refine) {
     double sp = s_over_D;
     if (!(sp > 0.0)) return 0.0;
-    int infinite = !(sp <= 1e300);
-    if (!(sin_half >= 1e-150)) {
-        if (infinite || sp >= 1.0) {
+    int infinite = !(sp <= SLUT_INFINITE_ABOVE) ? 1 : 0;
+    if (!(sin_half >= SLUT_SQUARABLE_MIN)) {
+        if (infinite != 0 || sp >= 1.0) {
             if (!(sin_half > 0.0)) return SLUT_HUGE_VAL;
         } else {
             return slut_hg_psi_forward(g) * sp / (2.0 * (1.0 - sp));
         }
     }
     double sh2 = sin_half * sin_half;
-    double d_far = infinite ? SLUT_HUGE_VAL
+    double d_far = (infinite != 0) ? SLUT_HUGE_VAL
                             : ((sp > 1.0) ? sp * sqrt((1.0 - 1.0 / sp) * (1.0 - 1.0 / sp) + 4.0 * sh2 / sp)
                                           : sqrt((1.0 - sp) * (1.0 - sp) + 4.0 * sp * sh2));
-    int narrow = cos_half >= sin_half;
-    double tau_hat = narrow ? sin_half / cos_half : 1.0;
-    double eps_hat = narrow ? 1.0 : cos_half / sin_half;
-    double mu = narrow ? 2.0 * sin_half * cos_half : 2.0 * sh2;
+    int narrow = (cos_half >= sin_half) ? 1 : 0;
+    double tau_hat = (narrow != 0) ? sin_half / cos_half : 1.0;
+    double eps_hat = (narrow != 0) ? 1.0 : cos_half / sin_half;
+    double mu = (narrow != 0) ? 2.0 * sin_half * cos_half : 2.0 * sh2;
     double z_end;
-    if (infinite) z_end = SLUT_HUGE_VAL;
+    if (infinite != 0) z_end = SLUT_HUGE_VAL;
     else if (sp >= 1.0) z_end = ((sp - 1.0) + d_far) / mu;
     else z_end = 2.0 * sp * tau_hat / (d_far + (1.0 - sp)); /* τ̂ = tan(γ/2) or 1 */
     double K = slut_hg_air_integral(optical_distance * mu, tau_hat, eps_hat, z_end, g, refine);
     return K / mu;
 }
 
+/* The radiance from its bracket: σ_s/(4π)·I0·(2/D)·e^{−σ_t D}·B_g, W/(m²·sr) for I0 in W/sr,
+ * σ in 1/m, D in m. 0 for B ≤ 0, +∞ for B = +∞; where σ_s·I0·e^{−σ_t D}/D leaves the working
+ * type's normal range the product is formed in logarithms. */
+SLUT_FN double slut_hg_airlight_from_bracket(double sigma_s, double sigma_t, double intensity, double distance,
+                                             double B) {
+    if (!(B > 0.0)) return 0.0;
+    if (!SLUT_ISFINITE(B)) return SLUT_HUGE_VAL;
+    double scale = sigma_s * SLUT_INV_4PI * intensity * 2.0 / distance * exp(-sigma_t * distance);
+    if (scale >= SLUT_REAL_MIN_NORMAL && scale <= SLUT_INFINITE_ABOVE) return scale * B;
+    return exp(log(sigma_s) + log(SLUT_INV_4PI * 2.0) + log(intensity) - log(distance) - sigma_t * distance + log(B));
+}
+
 /* Exact anisotropic airlight radiance, W/(m²·sr) for I0 in W/sr, coefficients in 1/m,
  * lengths in m (length > 1e300: an infinite ray), γ given by sin γ ≥ 0 and cos γ.
  * 0 for σ_s = 0, I0 = 0, s = 0 or σ_t D ≥ 1e300; +∞ where the ray reaches the light; never
  * NaN. Where σ_s·I0·e^{−σ_t D}/D leaves the double range the product is formed in
- * logarithms. refine = 1 is the rule (larger: the finer independent one). */
+ * logarithms. refine = 1 is the rule (larger: the finer independent one). (In float, the
+ * GPU snippet's: 1e30 for 1e300.) */
 SLUT_FN double slut_hg_airlight_radiance(double sigma_s, double sigma_a, double intensity, double distance,
                                          double sin_gamma, double cos_gamma, double length, double g,
                                          double refine) {
-    double sigma_t = sigma_s + sigma_a, sh, ch;
+    double sigma_t = sigma_s + sigma_a;
     if (!(sigma_s > 0.0) || !(intensity > 0.0) || !(length > 0.0)) return 0.0;
-    if (!(sigma_t * distance < 1e300)) return 0.0;
-    slut_hg_half_angles(sin_gamma, cos_gamma, &sh, &ch);
-    double s_over_D = (length > 1e300) ? SLUT_HUGE_VAL : length / distance;
-    double B = slut_hg_airlight_bracket(sigma_t * distance, sh, ch, s_over_D, g, refine);
-    if (!(B > 0.0)) return 0.0;
-    if (!SLUT_ISFINITE(B)) return SLUT_HUGE_VAL;
-    double scale = sigma_s * SLUT_INV_4PI * intensity * 2.0 / distance * exp(-sigma_t * distance);
-    if (scale >= SLUT_DBL_MIN_NORMAL && scale <= 1e300) return scale * B;
-    return exp(log(sigma_s) + log(SLUT_INV_4PI * 2.0) + log(intensity) - log(distance) - sigma_t * distance + log(B));
+    if (!(sigma_t * distance < SLUT_INFINITE_ABOVE)) return 0.0;
+    slut_hg_half_angle h = slut_hg_half_angles_of(sin_gamma, cos_gamma);
+    double s_over_D = (length > SLUT_INFINITE_ABOVE) ? SLUT_HUGE_VAL : length / distance;
+    double B = slut_hg_airlight_bracket(sigma_t * distance, h.sin_half, h.cos_half, s_over_D, g, refine);
+    return slut_hg_airlight_from_bracket(sigma_s, sigma_t, intensity, distance, B);
+}
+
+/* ------------------------------------------------------------ radiance from a table */
+
+/* The two ends of the bracket for a table of G̃_g (the GPU snippet; the C++ AirlightHgTable::radiance
+ * does the same steps): B_g = [w2·G̃_g(u, w2) − e^{−σ_t Δ}·w1·G̃_g(u, w1)]/sin γ with
+ *   u = σ_t D sin γ,  w2 = π/2 − γ/2 = atan2(cos(γ/2), sin(γ/2))  (exact near γ → π too),
+ *   w1 = π/2 − v1 = atan2(1, tan v1),  tan v1 = tan(γ/2) + Δ/(D sin γ),
+ * Δ/D without cancellation as in slut_hg_airlight_bracket (s' ≥ 1: (s' − 1) + d'; s' < 1:
+ * 4s' sin²(γ/2)/(d' + 1 − s')); an infinite ray has no far term (w1 = 0). samples = 0 where the
+ * table is not used: sin γ < 1e-6 (the geometry of γ → 0, where the bracket's own integral is
+ * cheap and exact). s_over_D > SLUT_INFINITE_ABOVE: an infinite ray. */
+SLUT_STRUCT_BEGIN(slut_hg_airlight_ends)
+    int samples;          /* 1: sample G̃_g at (u, w2), and at (u, w1) where w1 > 0       */
+    double optical_distance; /* σ_t D                                                  */
+    double sin_gamma;     /* sin γ                                                       */
+    double sin_half;      /* sin(γ/2)                                                    */
+    double cos_half;      /* cos(γ/2)                                                    */
+    double s_over_D;      /* s/D (+∞ for an infinite ray)                                */
+    double u;             /* σ_t D sin γ                                                 */
+    double w2;            /* π/2 − γ/2: the viewer end                                   */
+    double w1;            /* π/2 − v1: the far end (0 for an infinite ray)               */
+    double far_attenuation; /* e^{−σ_t Δ} (0 for an infinite ray)                          */
+SLUT_STRUCT_END(slut_hg_airlight_ends);
+
+SLUT_FN slut_hg_airlight_ends slut_hg_airlight_setup_ends(double optical_distance, double sin_gamma,
+                                                          double cos_gamma, double s_over_D) {
+    slut_hg_airlight_ends e;
+    slut_hg_half_angle h = slut_hg_half_angles_of(sin_gamma, cos_gamma);
+    e.optical_distance = optical_distance;
+    e.sin_gamma = sin_gamma;
+    e.sin_half = h.sin_half;
+    e.cos_half = h.cos_half;
+    e.s_over_D = s_over_D;
+    e.samples = (sin_gamma >= 1e-6) ? 1 : 0;
+    e.u = optical_distance * sin_gamma;
+    e.w2 = atan2(h.cos_half, h.sin_half);
+    e.w1 = 0.0;
+    e.far_attenuation = 0.0;
+    if (e.samples != 0 && s_over_D <= SLUT_INFINITE_ABOVE) {
+        double sp = s_over_D, sh2 = h.sin_half * h.sin_half;
+        double d_far = (sp > 1.0) ? sp * sqrt((1.0 - 1.0 / sp) * (1.0 - 1.0 / sp) + 4.0 * sh2 / sp)
+                                  : sqrt((1.0 - sp) * (1.0 - sp) + 4.0 * sp * sh2);
+        double delta_over_D = (sp >= 1.0) ? (sp - 1.0) + d_far : 4.0 * sp * sh2 / (d_far + (1.0 - sp));
+        double tan_v1 = h.sin_half / h.cos_half + delta_over_D / sin_gamma;
+        e.w1 = atan2(1.0, tan_v1);
+        e.far_attenuation = exp(-optical_distance * delta_over_D);
+    }
+    return e;
+}
+
+/* B_g from the two samples gs2 = G̃_g(u, w2) and gs1 = G̃_g(u, w1) (unused where w1 = 0), where
+ * the far term is at most half the viewer term; elsewhere (the two would cancel, or samples = 0)
+ * the segment's integral itself, slut_hg_airlight_bracket. */
+SLUT_FN double slut_hg_airlight_bracket_from_gs(slut_hg_airlight_ends e, double gs2, double gs1, double g) {
+    if (e.samples != 0) {
+        double a = e.w2 * gs2;
+        double b = (e.w1 > 0.0) ? e.far_attenuation * e.w1 * gs1 : 0.0;
+        if (SLUT_ISFINITE(a) && SLUT_ISFINITE(b) && b <= 0.5 * a && a > 0.0) return (a - b) / e.sin_gamma;
+    }
+    return slut_hg_airlight_bracket(e.optical_distance, e.sin_half, e.cos_half, e.s_over_D, g, 1.0);
 }
 
 #endif /* SLUT_AIRLIGHT_HG_H */

@@ -16,7 +16,7 @@
  * references), no templates, no standard library beyond <math.h> functions,
  * double precision throughout.
  *
- * A third compiler: kernels/slut_airlight.h (whole) and the regions between
+ * A third compiler: kernels/slut_airlight.h, slut_phase.h and slut_airlight_hg.h (whole) and the regions between
  * SLUT_SHADER_BEGIN and SLUT_SHADER_END of slut_axes.h and slut_nearlight.h are compiled
  * once more, as GLSL, GLSL ES 3.00 and HLSL in float, for the GPU sampling snippets
  * (cmake/assemble_shaders.cmake; the SLUT_SHADER branch below, the float math of
@@ -71,6 +71,7 @@
 #  define sinh(x) slut_sinh(x)
 #  define atan(x) slut_atan2(x, 1.0)
 #  define atan2(y, x) slut_atan2(y, x)
+#  define pow(x, y) slut_pow(x, y)
 /* float's thresholds and caps (the double ones below). */
 #  define SLUT_INFINITE_ABOVE 1e30
 #  define SLUT_TINY 1e-30

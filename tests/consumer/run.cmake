@@ -18,7 +18,8 @@ step(${CMAKE_COMMAND} --build "${WORK_DIR}/build")
 step("${WORK_DIR}/build/consumer" "${WORK_DIR}/tables/airlight_F.slut")
 
 # The GPU snippets, generated at build time, are installed beside the library.
-foreach(snippet scatterlut_airlight.glsl scatterlut_airlight.hlsl scatterlut_nearlight.glsl scatterlut_nearlight.hlsl)
+foreach(snippet scatterlut_airlight.glsl scatterlut_airlight.hlsl scatterlut_nearlight.glsl scatterlut_nearlight.hlsl
+                scatterlut_airlight_hg.glsl scatterlut_airlight_hg.hlsl scatterlut_airlight_hg.essl)
   if(NOT EXISTS "${moved}/share/scatterlut/shaders/${snippet}")
     message(FATAL_ERROR "${snippet} is not installed in ${moved}/share/scatterlut/shaders")
   endif()

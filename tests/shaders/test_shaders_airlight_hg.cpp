@@ -1,0 +1,730 @@
+// The anisotropic (Henyey-Greenstein) airlight GPU sampling snippets
+// (scatterlut_airlight_hg.{glsl,hlsl,essl}, generated at build time from
+// tables/shaders/src/airlight_hg.slsl and kernels/slut_airlight_hg.h, slut_phase.h compiled
+// whole in float; docs/SHADERS.md) against the truths they must reproduce, at
+// g in {-0.5, 0.85, 0.95}:
+//   - the table radiance, its RGB entry point and G~_g: the C++ runtime sampler
+//     (scatterlut::AirlightHgTable, tables/src/airlight_hg.cpp) on the same table;
+//   - the snippet's exact radiance (slut_airlight_hg_exact, no table): the double-precision
+//     exact radiance (scatterlut::airlight_radiance_exact with phase_g, anisotropic.hpp);
+// both fed the same float-rounded inputs, with the float tolerances of the isotropic snippet's
+// test (tests/shaders/test_shaders.cpp). Also: the files share one body and are ASCII,
+// glslang compiles GLSL (OpenGL, Vulkan, ES 3.00) and HLSL, and the queries exercise every
+// regime and branch. A missing tool or EGL display skips, unless SCATTERLUT_REQUIRE_SHADER_TESTS.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "scatterlut/airlight_hg.hpp"
+#include "scatterlut/anisotropic.hpp"
+#include "scatterlut/table.hpp"
+
+extern "C" {
+#include "slut_airlight_hg.h"
+#include "slut_axes.h"
+}
+
+#include "gpu_harness.hpp"
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+using namespace gpu_harness;
+
+const std::string &snippet(const std::string &lang) {
+    static std::map<std::string, std::string> texts;
+    auto it = texts.find(lang);
+    if (it == texts.end()) it = texts.emplace(lang, read_text(kShaderDir + "scatterlut_airlight_hg." + lang)).first;
+    return it->second;
+}
+
+const std::vector<double> kPhaseGs = {-0.5, 0.85, 0.95};
+
+// ------------------------------------------------------------------------ the tables
+
+constexpr int kCountU = 128, kCountW = 64;
+constexpr double kUMax = 64.0, kUScale = 1e-7, kWMin = 1e-3;
+
+// The anisotropic airlight table with the generator's axes (host/src/generate_airlight_hg.cpp:
+// u LOG1P scale 1e-7 on [0, 64], w ASINH_COT on [1e-3, pi/2], channel ln_Gs_g, extra phase.g),
+// integrated here with the shared quadrature and rounded to f32 as a file round trip would.
+scatterlut::Table make_table(double g) {
+    scatterlut::Table t;
+    t.kind = scatterlut::kKindAirlightFg;
+    t.quantity_version = scatterlut::kAirlightFgQuantityVersion;
+    scatterlut::Axis u;
+    u.name = "u";
+    u.meaning = "optical distance sigma_t*D*sin(gamma)";
+    u.map.min = 0.0;
+    u.map.max = kUMax;
+    u.map.scale = kUScale;
+    u.map.warp = SLUT_WARP_LOG1P;
+    u.map.count = kCountU;
+    scatterlut::Axis w;
+    w.name = "w";
+    w.meaning = "pi/2 - v (rad)";
+    w.map.min = kWMin;
+    w.map.max = SLUT_PIO2_HI;
+    w.map.scale = 0.0;
+    w.map.warp = SLUT_WARP_ASINH_COT;
+    w.map.count = kCountW;
+    t.axes = {u, w};
+    scatterlut::Channel c;
+    c.name = "ln_Gs_g";
+    c.meaning = "ln of the anisotropic scaled tail";
+    c.encoding = scatterlut::Encoding::Log;
+    t.channels = {c};
+    t.storage = scatterlut::Storage::F32;
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", g);
+    t.extra[scatterlut::kPhaseGKey] = text;
+    t.values.resize(static_cast<size_t>(kCountU) * kCountW);
+    for (int j = 0; j < kCountW; ++j) {
+        const double wj = slut_axis_node(&t.axes[1].map, j);
+        for (int i = 0; i < kCountU; ++i) {
+            const double ui = slut_axis_node(&t.axes[0].map, i);
+            t.values[static_cast<size_t>(j) * kCountU + i] =
+                static_cast<float>(std::log(slut_hg_gs_quadrature(ui, wj, g, 1.0)));
+        }
+    }
+    t.check_consistent();
+    return t;
+}
+
+const scatterlut::AirlightHgTable &table_for(double g) {
+    static std::map<double, scatterlut::AirlightHgTable> tables;
+    auto it = tables.find(g);
+    if (it == tables.end()) it = tables.emplace(g, scatterlut::AirlightHgTable(make_table(g))).first;
+    return it->second;
+}
+
+// ---------------------------------------------------------------------- the queries
+
+// One GPU query: 16 floats. mode 0: Gs_g(u, w); 1: table radiance (sigma_s, sigma_a, I0, D,
+// sin gamma, cos gamma, s); 2: exact radiance (the same inputs, no table); 3: the RGB entry
+// point (sigma_s rgb, sigma_a rgb, I0, D, sin gamma, cos gamma, s, channel returned);
+// 4: radiance from points (viewer, dir, light, s, sigma_s, sigma_a, I0).
+enum Mode { kScaledTail = 0, kRadiance = 1, kExact = 2, kRgb = 3, kPoints = 4 };
+constexpr int kQueryFloats = 16;
+
+struct Query {
+    std::array<float, kQueryFloats> gpu{};
+    double reference = 0;
+    double optical_distance = 0; // sigma_t D (the float exp's error grows with it)
+    double cell_jump = 0;        // |d ln Gs_g| across the table cells sampled (see kTexelRounding)
+    std::string label;
+};
+
+// The largest change of the stored ln Gs_g across the cell that holds (u, w), the u and the w
+// step added; 0 outside the table (the asymptotic forms serve there).
+double cell_jump(const scatterlut::AirlightHgTable &table, double u, double w) {
+    if (w < table.w_min() || u > table.u_max()) return 0.0;
+    const scatterlut::Table &t = table.table();
+    const int nu = t.axes[0].map.count, nw = t.axes[1].map.count;
+    const double pu = slut_node_position_from_unit(slut_unit_from_param(&t.axes[0].map, u), nu);
+    const double pw = slut_node_position_from_unit(slut_unit_from_param(&t.axes[1].map, w), nw);
+    const int i = slut_cell_index(pu, nu), j = slut_cell_index(pw, nw);
+    const auto v = [&](int a, int b) { return static_cast<double>(t.values[static_cast<size_t>(b) * nu + a]); };
+    const double du = std::max(std::fabs(v(i + 1, j) - v(i, j)), std::fabs(v(i + 1, j + 1) - v(i, j + 1)));
+    const double dw = std::max(std::fabs(v(i, j + 1) - v(i, j)), std::fabs(v(i + 1, j + 1) - v(i + 1, j)));
+    return du + dw;
+}
+
+// The cell jumps of the samples the table radiance takes (both ends), from the double set-up.
+double radiance_cell_jump(const scatterlut::AirlightHgTable &table, const scatterlut::AirlightQuery &cq) {
+    const double sigma_t = cq.sigma_s_per_m + cq.sigma_a_per_m;
+    const double s_over_D = cq.length_m > 1e300 ? HUGE_VAL : cq.length_m / cq.distance_m;
+    const slut_hg_airlight_ends e = slut_hg_airlight_setup_ends(sigma_t * cq.distance_m, std::sin(cq.gamma_rad),
+                                                                std::cos(cq.gamma_rad), s_over_D);
+    if (e.samples == 0) return 0.0;
+    return std::max(cell_jump(table, e.u, e.w2), e.w1 > 0.0 ? cell_jump(table, e.u, e.w1) : 0.0);
+}
+
+double log_uniform(std::mt19937_64 &rng, double lo, double hi) {
+    std::uniform_real_distribution<double> d(std::log(lo), std::log(hi));
+    return std::exp(d(rng));
+}
+
+std::string describe(const std::array<float, kQueryFloats> &q) {
+    std::ostringstream s;
+    s.precision(9);
+    s << "mode " << q[0] << " [";
+    for (int k = 1; k < kQueryFloats; ++k) s << (k > 1 ? ", " : "") << q[k];
+    s << "]";
+    return s.str();
+}
+
+scatterlut::AirlightQuery cpp_query(float sigma_s, float sigma_a, float I0, float D, float sin_gamma, float cos_gamma,
+                                    float s) {
+    scatterlut::AirlightQuery cq;
+    cq.sigma_s_per_m = sigma_s;
+    cq.sigma_a_per_m = sigma_a;
+    cq.intensity_W_per_sr = I0;
+    cq.distance_m = D;
+    cq.gamma_rad = std::atan2(static_cast<double>(sin_gamma), static_cast<double>(cos_gamma));
+    cq.length_m = s;
+    return cq;
+}
+
+// A random geometry of the acceptance domain and beyond (as the isotropic test's): sigma_t D in
+// [1e-4, 13.8] and up to 85, D in [0.01, 100] m, s/D in [1e-5, 100] or infinite, gamma uniform,
+// near 0 and pi, exactly 0 and pi. Fills gpu[4..7] (D, sin gamma, cos gamma, s) and returns
+// sigma_t and I0 through the pointers.
+void random_geometry(std::mt19937_64 &rng, Query *q, double *sigma_t, double *I0) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const double r_tau = unit(rng), r_gamma = unit(rng), r_s = unit(rng);
+    const bool large_u = r_tau >= 0.92;
+    const double tau = r_tau < 0.8 ? log_uniform(rng, 1e-4, 13.8)
+                       : large_u   ? log_uniform(rng, 70.0, 85.0)
+                                   : log_uniform(rng, 13.8, 85.0);
+    const double D = log_uniform(rng, 0.01, 100.0);
+    *sigma_t = tau / D;
+    *I0 = log_uniform(rng, 1.0, 1e4) * (tau > 13.8 ? 1e12 : 1.0);
+    double gamma = kPi * unit(rng);
+    if (r_gamma < 0.2) gamma = log_uniform(rng, 1e-7, 0.1);
+    else if (r_gamma < 0.4) gamma = kPi - log_uniform(rng, 1e-7, 0.1);
+    else if (r_gamma < 0.43) gamma = 0.0;
+    else if (r_gamma < 0.46) gamma = kPi;
+    if (large_u) gamma = 1.2 + (kPi - 2.4) * unit(rng);
+    const double s = r_s < 0.15 ? std::numeric_limits<double>::infinity() : D * log_uniform(rng, 1e-5, 100.0);
+    q->gpu[4] = static_cast<float>(D);
+    q->gpu[5] = gamma == kPi ? 0.0f : static_cast<float>(std::sin(gamma));
+    q->gpu[6] = gamma == kPi ? -1.0f : static_cast<float>(std::cos(gamma));
+    q->gpu[7] = static_cast<float>(s);
+}
+
+std::vector<Query> make_queries(double g) {
+    const scatterlut::AirlightHgTable &table = table_for(g);
+    std::mt19937_64 rng(20261202 + static_cast<uint64_t>(std::lround(100 * (g + 1))));
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<Query> out;
+
+    // Gs_g(u, w) in every regime: the table, u = 0, u around and beyond u_max, w below w_min,
+    // w near pi/2 (where the forward peak of g > 0 lies).
+    const slut_axis &au = table.table().axes[0].map;
+    const slut_axis &aw = table.table().axes[1].map;
+    for (int i = 0; i < 800; ++i) {
+        const double r1 = unit(rng), r2 = unit(rng);
+        double u = slut_param_from_unit(&au, unit(rng));
+        double w = slut_param_from_unit(&aw, unit(rng));
+        if (r1 < 0.08) u = 0.0;
+        else if (r1 < 0.2) u = log_uniform(rng, kUMax, 1e4);
+        else if (r1 < 0.25) u = kUMax * (1.0 + 2e-3 * (unit(rng) - 0.5));
+        else if (r1 < 0.3) u = log_uniform(rng, 1e-12, 1e-6);
+        if (r2 < 0.12) w = log_uniform(rng, 1e-7, kWMin);
+        else if (r2 < 0.17) w = kPi / 2 - log_uniform(rng, 1e-7, 1e-2);
+        else if (r2 < 0.2) w = kWMin * (1.0 + 2e-3 * (unit(rng) - 0.5));
+        Query q;
+        q.gpu[0] = kScaledTail;
+        q.gpu[1] = static_cast<float>(u);
+        q.gpu[2] = static_cast<float>(w);
+        q.reference = table.scaled_tail(q.gpu[1], q.gpu[2]);
+        q.cell_jump = cell_jump(table, q.gpu[1], q.gpu[2]);
+        q.label = "Gs";
+        out.push_back(q);
+    }
+
+    // Radiance from the table and exactly, on the same geometries.
+    for (int i = 0; i < 1500; ++i) {
+        Query q;
+        double sigma_t = 0, I0 = 0;
+        random_geometry(rng, &q, &sigma_t, &I0);
+        const double albedo = 0.05 + 0.95 * unit(rng);
+        q.gpu[1] = static_cast<float>(albedo * sigma_t);
+        q.gpu[2] = static_cast<float>((1.0 - albedo) * sigma_t);
+        q.gpu[3] = static_cast<float>(I0);
+        const scatterlut::AirlightQuery cq = cpp_query(q.gpu[1], q.gpu[2], q.gpu[3], q.gpu[4], q.gpu[5], q.gpu[6], q.gpu[7]);
+        q.optical_distance = (static_cast<double>(q.gpu[1]) + q.gpu[2]) * q.gpu[4];
+        q.gpu[0] = kRadiance;
+        q.reference = table.radiance(cq);
+        q.cell_jump = radiance_cell_jump(table, cq);
+        q.label = "radiance";
+        out.push_back(q);
+        if (i % 3 == 0) { // the exact path costs tens of panels: a third of the geometries
+            q.gpu[0] = kExact;
+            q.reference = scatterlut::airlight_radiance_exact(cq, g);
+            q.cell_jump = 0.0; // no table
+            q.label = "exact";
+            out.push_back(q);
+        }
+    }
+
+    // Degenerate inputs: zero radiance (sigma_s = 0, I0 = 0, s = 0), the ray through the
+    // light (gamma = 0, s >= D: +inf), gamma = 0 short of the light, gamma = pi.
+    const float inf = std::numeric_limits<float>::infinity();
+    const std::array<std::array<float, 7>, 7> degenerate = {{{0.0f, 0.1f, 1.0f, 2.0f, 0.5f, 0.8f, 3.0f},
+                                                           {0.1f, 0.1f, 0.0f, 2.0f, 0.5f, 0.8f, 3.0f},
+                                                           {0.1f, 0.1f, 1.0f, 2.0f, 0.5f, 0.8f, 0.0f},
+                                                           {0.1f, 0.1f, 1.0f, 2.0f, 0.0f, 1.0f, 2.0f},
+                                                           {0.1f, 0.1f, 1.0f, 2.0f, 0.0f, 1.0f, inf},
+                                                           {0.1f, 0.1f, 1.0f, 2.0f, 0.0f, 1.0f, 1.5f},
+                                                           {0.1f, 0.1f, 1.0f, 2.0f, 0.0f, -1.0f, inf}}};
+    std::vector<std::array<float, 7>> limits(degenerate.begin(), degenerate.end());
+    for (int i = 0; i < 20; ++i) { // rays through the light (gamma = 0, s >= D or infinite): +inf
+        const float D = static_cast<float>(log_uniform(rng, 0.01, 100.0));
+        limits.push_back({0.05f, 0.01f, 10.0f, D, 0.0f, 1.0f, i % 2 == 0 ? inf : D * static_cast<float>(1.0 + unit(rng))});
+    }
+    for (const auto &d : limits)
+        for (Mode mode : {kRadiance, kExact}) {
+            Query q;
+            q.gpu[0] = mode;
+            std::copy(d.begin(), d.end(), q.gpu.begin() + 1);
+            const scatterlut::AirlightQuery cq = cpp_query(d[0], d[1], d[2], d[3], d[4], d[5], d[6]);
+            q.reference = mode == kRadiance ? table.radiance(cq) : scatterlut::airlight_radiance_exact(cq, g);
+            q.optical_distance = (static_cast<double>(d[0]) + d[1]) * d[3];
+            q.label = mode == kRadiance ? "radiance" : "exact";
+            out.push_back(q);
+        }
+
+    // The RGB entry point: per-channel coefficients (one channel clear now and then, sigma_t = 0,
+    // while another is dense), one GPU item per channel.
+    for (int i = 0; i < 300; ++i) {
+        Query q;
+        double sigma_t = 0, I0 = 0;
+        random_geometry(rng, &q, &sigma_t, &I0);
+        scatterlut::Rgb ss{}, sa{};
+        for (int c = 0; c < 3; ++c) {
+            const double factor = log_uniform(rng, 0.2, 5.0), albedo = 0.05 + 0.95 * unit(rng);
+            ss[c] = static_cast<float>(albedo * sigma_t * factor);
+            sa[c] = static_cast<float>((1.0 - albedo) * sigma_t * factor);
+        }
+        if (unit(rng) < 0.15) ss[i % 3] = sa[i % 3] = 0.0;
+        const float D = q.gpu[4], sg = q.gpu[5], cg = q.gpu[6], s = q.gpu[7];
+        const scatterlut::AirlightQuery cq = cpp_query(0.0f, 0.0f, static_cast<float>(I0), D, sg, cg, s);
+        const scatterlut::Rgb want = table.radiance_rgb(cq, ss, sa);
+        const double jump = radiance_cell_jump(table, cq); // u differs per channel: the largest
+        double jump_rgb = jump;
+        for (int c = 0; c < 3; ++c) {
+            scatterlut::AirlightQuery cc = cq;
+            cc.sigma_s_per_m = ss[c];
+            cc.sigma_a_per_m = sa[c];
+            jump_rgb = std::max(jump_rgb, radiance_cell_jump(table, cc));
+        }
+        for (int c = 0; c < 3; ++c) {
+            Query qc;
+            qc.gpu[0] = kRgb;
+            for (int k = 0; k < 3; ++k) {
+                qc.gpu[1 + k] = static_cast<float>(ss[k]);
+                qc.gpu[4 + k] = static_cast<float>(sa[k]);
+            }
+            qc.gpu[7] = static_cast<float>(I0);
+            qc.gpu[8] = D;
+            qc.gpu[9] = sg;
+            qc.gpu[10] = cg;
+            qc.gpu[11] = s;
+            qc.gpu[12] = static_cast<float>(c);
+            qc.reference = want[c];
+            qc.optical_distance = (ss[c] + sa[c]) * D;
+            qc.cell_jump = jump_rgb;
+            qc.label = "rgb";
+            out.push_back(qc);
+        }
+    }
+
+    // Radiance from points (gamma in [0.1, pi - 0.1]: a float cross product of nearly parallel
+    // vectors loses sin gamma's relative precision, the caller's input, not the snippet's error).
+    for (int i = 0; i < 300; ++i) {
+        const double D = log_uniform(rng, 0.01, 100.0), tau = log_uniform(rng, 1e-4, 13.8);
+        const double sigma_t = tau / D, albedo = 0.05 + 0.95 * unit(rng);
+        std::normal_distribution<double> normal;
+        double l_dir[3], n2 = 0;
+        for (double &x : l_dir) x = normal(rng), n2 += x * x;
+        for (double &x : l_dir) x /= std::sqrt(n2);
+        const double any[3] = {std::fabs(l_dir[0]) < 0.9 ? 1.0 : 0.0, std::fabs(l_dir[0]) < 0.9 ? 0.0 : 1.0, 0.0};
+        double e1[3] = {l_dir[1] * any[2] - l_dir[2] * any[1], l_dir[2] * any[0] - l_dir[0] * any[2],
+                        l_dir[0] * any[1] - l_dir[1] * any[0]};
+        const double ne1 = std::sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+        const double gamma = 0.1 + (kPi - 0.2) * unit(rng);
+        const double s = unit(rng) < 0.15 ? std::numeric_limits<double>::infinity() : D * log_uniform(rng, 1e-5, 100.0);
+        Query q;
+        q.gpu[0] = kPoints;
+        for (int k = 0; k < 3; ++k) {
+            const double v = D * (2.0 * unit(rng) - 1.0);
+            q.gpu[1 + k] = static_cast<float>(v);
+            q.gpu[4 + k] = static_cast<float>(std::cos(gamma) * l_dir[k] + std::sin(gamma) * e1[k] / ne1);
+            q.gpu[7 + k] = static_cast<float>(v + D * l_dir[k]);
+        }
+        q.gpu[10] = static_cast<float>(s);
+        q.gpu[11] = static_cast<float>(albedo * sigma_t);
+        q.gpu[12] = static_cast<float>((1.0 - albedo) * sigma_t);
+        q.gpu[13] = static_cast<float>(log_uniform(rng, 1.0, 1e4));
+        const double v[3] = {q.gpu[1], q.gpu[2], q.gpu[3]}, d[3] = {q.gpu[4], q.gpu[5], q.gpu[6]},
+                     l[3] = {q.gpu[7], q.gpu[8], q.gpu[9]};
+        const scatterlut::AirlightQuery cq =
+            scatterlut::airlight_query_from_points(v, d, l, q.gpu[10], q.gpu[11], q.gpu[12], q.gpu[13]);
+        q.reference = table.radiance(cq);
+        q.cell_jump = radiance_cell_jump(table, cq);
+        q.optical_distance = (static_cast<double>(q.gpu[11]) + q.gpu[12]) * cq.distance_m;
+        q.label = "points";
+        out.push_back(q);
+    }
+    return out;
+}
+
+const std::vector<Query> &queries(double g) {
+    static std::map<double, std::vector<Query>> all;
+    auto it = all.find(g);
+    if (it == all.end()) it = all.emplace(g, make_queries(g)).first;
+    return it->second;
+}
+
+// ------------------------------------------------------------------ shader wrappers
+
+// The compute shader that evaluates the queries: 0 the table, 1 the queries, 2 the results,
+// 3 the parameters (std140: u_max, u_scale, u_count, w_min, w_count, n_queries, phase_g).
+std::string glsl_compute_source(bool hardware_filter) {
+    std::string s = "#version 430\n";
+    if (hardware_filter) s += "#define SLUT_AIRLIGHT_HARDWARE_FILTER\n";
+    s += R"glsl(
+layout(local_size_x = 64) in;
+layout(binding = 0) uniform sampler2D slut_test_table;
+layout(std430, binding = 1) readonly buffer SlutTestQueries { float q[]; };
+layout(std430, binding = 2) writeonly buffer SlutTestResults { float r[]; };
+layout(std140, binding = 3) uniform SlutTestParams {
+    float u_max; float u_scale; int u_count; float w_min; int w_count; int n_queries; float phase_g;
+};
+)glsl";
+    s += snippet("glsl");
+    s += R"glsl(
+void main() {
+    int i = int(gl_GlobalInvocationID.x);
+    if (i >= n_queries) return;
+    SlutAirlightHgTable t = slut_airlight_hg_table(
+        slut_axis_make(0.0, u_max, u_scale, SLUT_WARP_LOG1P, u_count),
+        slut_axis_make(w_min, SLUT_PIO2_HI, 1.0, SLUT_WARP_ASINH_COT, w_count), phase_g);
+    int b = 16 * i;
+    int mode = int(q[b]);
+    float result;
+    if (mode == 0) {
+        result = slut_airlight_hg_scaled_tail(slut_test_table, t, q[b + 1], q[b + 2]);
+    } else if (mode == 1) {
+        result = slut_airlight_hg_radiance(slut_test_table, t, q[b + 1], q[b + 2], q[b + 3],
+                                           q[b + 4], q[b + 5], q[b + 6], q[b + 7]);
+    } else if (mode == 2) {
+        result = slut_airlight_hg_exact(q[b + 1], q[b + 2], q[b + 3], q[b + 4], q[b + 5], q[b + 6],
+                                        q[b + 7], phase_g);
+    } else if (mode == 3) {
+        vec3 L = slut_airlight_hg_radiance_rgb(slut_test_table, t, vec3(q[b + 1], q[b + 2], q[b + 3]),
+                                               vec3(q[b + 4], q[b + 5], q[b + 6]), q[b + 7], q[b + 8],
+                                               q[b + 9], q[b + 10], q[b + 11]);
+        int c = int(q[b + 12]);
+        result = c == 0 ? L.x : (c == 1 ? L.y : L.z);
+    } else {
+        result = slut_airlight_hg_radiance_points(slut_test_table, t,
+            vec3(q[b + 1], q[b + 2], q[b + 3]), vec3(q[b + 4], q[b + 5], q[b + 6]),
+            vec3(q[b + 7], q[b + 8], q[b + 9]), q[b + 10], q[b + 11], q[b + 12], q[b + 13]);
+    }
+    r[i] = result;
+}
+)glsl";
+    return s;
+}
+
+std::string hlsl_compute_source(bool hardware_filter) {
+    std::string s;
+    if (hardware_filter) s += "#define SLUT_AIRLIGHT_HARDWARE_FILTER\n";
+    s += R"hlsl(
+[[vk::binding(0)]] Texture2D<float> slut_test_table;
+[[vk::binding(4)]] SamplerState slut_test_table_sampler;
+[[vk::binding(1)]] StructuredBuffer<float> q;
+[[vk::binding(2)]] RWStructuredBuffer<float> r;
+[[vk::binding(3)]] cbuffer SlutTestParams {
+    float u_max; float u_scale; int u_count; float w_min; int w_count; int n_queries; float phase_g;
+};
+)hlsl";
+    s += snippet("hlsl");
+    s += R"hlsl(
+[numthreads(64, 1, 1)]
+void main(uint3 id : SV_DispatchThreadID) {
+    int i = int(id.x);
+    if (i >= n_queries) return;
+    SlutAirlightHgTable t = slut_airlight_hg_table(
+        slut_axis_make(0.0, u_max, u_scale, SLUT_WARP_LOG1P, u_count),
+        slut_axis_make(w_min, SLUT_PIO2_HI, 1.0, SLUT_WARP_ASINH_COT, w_count), phase_g);
+    int b = 16 * i;
+    int mode = int(q[b]);
+    float result;
+    if (mode == 0) {
+        result = slut_airlight_hg_scaled_tail(slut_test_table, slut_test_table_sampler, t, q[b + 1], q[b + 2]);
+    } else if (mode == 1) {
+        result = slut_airlight_hg_radiance(slut_test_table, slut_test_table_sampler, t, q[b + 1], q[b + 2],
+                                           q[b + 3], q[b + 4], q[b + 5], q[b + 6], q[b + 7]);
+    } else if (mode == 2) {
+        result = slut_airlight_hg_exact(q[b + 1], q[b + 2], q[b + 3], q[b + 4], q[b + 5], q[b + 6],
+                                        q[b + 7], phase_g);
+    } else if (mode == 3) {
+        float3 L = slut_airlight_hg_radiance_rgb(slut_test_table, slut_test_table_sampler, t,
+                                                 float3(q[b + 1], q[b + 2], q[b + 3]),
+                                                 float3(q[b + 4], q[b + 5], q[b + 6]), q[b + 7], q[b + 8],
+                                                 q[b + 9], q[b + 10], q[b + 11]);
+        int c = int(q[b + 12]);
+        result = c == 0 ? L.x : (c == 1 ? L.y : L.z);
+    } else {
+        result = slut_airlight_hg_radiance_points(slut_test_table, slut_test_table_sampler, t,
+            float3(q[b + 1], q[b + 2], q[b + 3]), float3(q[b + 4], q[b + 5], q[b + 6]),
+            float3(q[b + 7], q[b + 8], q[b + 9]), q[b + 10], q[b + 11], q[b + 12], q[b + 13]);
+    }
+    r[i] = result;
+}
+)hlsl";
+    return s;
+}
+
+// Fragment / pixel shaders as an engine would write them, RGB fog (compile checks only).
+std::string glsl_fragment_source(const std::string &version, const std::string &lang) {
+    std::string s = "#version " + version + "\n";
+    s += snippet(lang); // first: the ES prelude declares the precisions the declarations below need
+    s += "uniform sampler2D airlight_hg_table;\nuniform vec4 table_meta; // u_max, u_scale, w_min, phase_g\n"
+         "uniform ivec2 table_counts;\nuniform vec3 light_pos;\nuniform vec3 sigma_s;\nuniform vec3 sigma_a;\n"
+         "uniform float intensity;\nin vec3 world_pos;\nin vec3 eye_pos;\nout vec4 colour;\n";
+    s += R"glsl(
+void main() {
+    SlutAirlightHgTable t = slut_airlight_hg_table_default(table_meta.x, table_meta.y, table_counts.x,
+                                                           table_meta.z, table_counts.y, table_meta.w);
+    vec3 L = slut_airlight_hg_radiance_points_rgb(airlight_hg_table, t, eye_pos, world_pos - eye_pos,
+                                                  light_pos, length(world_pos - eye_pos), sigma_s, sigma_a,
+                                                  intensity);
+    colour = vec4(L, 1.0);
+}
+)glsl";
+    return s;
+}
+
+std::string hlsl_pixel_source() {
+    std::string s = "Texture2D<float> airlight_hg_table : register(t0);\nSamplerState airlight_hg_table_sampler : "
+                    "register(s0);\ncbuffer Fog : register(b0) { float4 table_meta; int2 table_counts; float3 "
+                    "light_pos; float3 sigma_s; float3 sigma_a; float intensity; };\n";
+    s += snippet("hlsl");
+    s += R"hlsl(
+float4 main(float3 world_pos : TEXCOORD0, float3 eye_pos : TEXCOORD1) : SV_Target {
+    SlutAirlightHgTable t = slut_airlight_hg_table_default(table_meta.x, table_meta.y, table_counts.x,
+                                                           table_meta.z, table_counts.y, table_meta.w);
+    float3 L = slut_airlight_hg_radiance_points_rgb(airlight_hg_table, airlight_hg_table_sampler, t, eye_pos,
+                                                    world_pos - eye_pos, light_pos, length(world_pos - eye_pos),
+                                                    sigma_s, sigma_a, intensity);
+    return float4(L, 1.0);
+}
+)hlsl";
+    return s;
+}
+
+// ---------------------------------------------------------------------- comparisons
+
+// The isotropic snippet's tolerances (tests/shaders/test_shaders.cpp, where they are derived):
+// Gs 1e-5; radiance 1e-5 + 4e-7 * sigma_t D (float's exp(-sigma_t D)). Their Gs part holds the
+// float texel position x*(n - 1), ~1e-5 texel of rounding, times |d ln Gs| per cell, which is
+// <= 0.28 on the isotropic table; the forward peak of g = 0.95 (width (1 - g)/(1 + g) = 0.026
+// in tan v) makes ln Gs_g change by up to ~4 across one w cell of this table, so that term is
+// added here per query: kTexelRounding times the cell's jump (twice for the radiance, a
+// difference of two samples).
+constexpr double kTolGs = 1e-5, kTolRadiance = 1e-5, kTolPerOpticalDistance = 4e-7;
+constexpr double kTexelRounding = 1e-5;
+
+#if SLUT_HAVE_EGL
+std::vector<float> run_on_gpu(const std::string &source, double g, std::string *error) {
+    const scatterlut::Table &table = table_for(g).table();
+    const std::vector<float> texels(table.values.begin(), table.values.end());
+    const std::vector<Query> &qs = queries(g);
+    std::vector<float> packed;
+    for (const Query &q : qs) packed.insert(packed.end(), q.gpu.begin(), q.gpu.end());
+    struct Params {
+        float u_max, u_scale;
+        int32_t u_count;
+        float w_min;
+        int32_t w_count, n_queries;
+        float phase_g;
+        int32_t pad;
+    } params{static_cast<float>(kUMax), static_cast<float>(kUScale), kCountU, static_cast<float>(kWMin),
+             kCountW, static_cast<int32_t>(qs.size()), static_cast<float>(g), 0};
+    return run_compute(source, texels, kCountU, kCountW, 0, packed, qs.size(), &params, sizeof params, error);
+}
+#endif
+
+void expect_agreement(const std::vector<float> &got, double g, const std::string &run, ::testing::Test *test) {
+    const std::vector<Query> &qs = queries(g);
+    ASSERT_EQ(got.size(), qs.size());
+    std::vector<double> reference;
+    for (const Query &q : qs) reference.push_back(q.reference);
+    for (const std::string label : {"Gs", "radiance", "exact", "rgb", "points"}) {
+        std::vector<size_t> indices;
+        for (size_t i = 0; i < qs.size(); ++i)
+            if (qs[i].label == label) indices.push_back(i);
+        const auto tolerance = [&](size_t i) {
+            return label == "Gs" ? kTolGs + kTexelRounding * qs[i].cell_jump
+                                 : kTolRadiance + kTolPerOpticalDistance * qs[i].optical_distance +
+                                       2.0 * kTexelRounding * qs[i].cell_jump;
+        };
+        const Stats st = error_stats(got, reference, indices, tolerance);
+        double jump = 0;
+        for (size_t i : indices) jump = std::max(jump, qs[i].cell_jump);
+        std::printf("[ %s g=%g ] %-8s n=%zu  max %.3g  p99 %.3g  median %.3g  max cell jump %.3g  (worst: %s -> gpu "
+                    "%.9g, C++ %.9g)\n",
+                    run.c_str(), g, label.c_str(), st.count, st.max, st.p99, st.median, jump,
+                    describe(qs[st.worst].gpu).c_str(), static_cast<double>(got[st.worst]), qs[st.worst].reference);
+        const Query &w = qs[st.worst_ratio];
+        EXPECT_LE(st.max_ratio, 1.0) << run << " g=" << g << " " << label << ": query " << describe(w.gpu) << " gave "
+                                     << got[st.worst_ratio] << ", C++ " << w.reference << ": relative error "
+                                     << rel_err(got[st.worst_ratio], w.reference) << " > tolerance "
+                                     << tolerance(st.worst_ratio);
+        char name[64];
+        std::snprintf(name, sizeof name, "%s_g%g_%s_max_rel_err", run.c_str(), g, label.c_str());
+        test->RecordProperty(name, std::to_string(st.max));
+    }
+    size_t bad = 0;
+    for (float v : got) bad += (std::isnan(v) || v < 0.0f) ? 1 : 0;
+    EXPECT_EQ(bad, 0u) << run << " g=" << g << ": NaN or negative results";
+}
+
+} // namespace
+
+// ------------------------------------------------------------------------- sources
+
+TEST(ShaderAirlightHgSources, AllLanguagesShareOneBodyAndAreAscii) {
+    const std::string g = shared_body(snippet("glsl"));
+    ASSERT_FALSE(g.empty()) << "SHARED BODY markers missing in scatterlut_airlight_hg.glsl";
+    for (const std::string lang : {"hlsl", "essl"}) {
+        EXPECT_EQ(shared_body(snippet(lang)), g) << "the " << lang << " body differs from the GLSL one";
+    }
+    // The shared part (prelude, float math, kernels/) is the isotropic snippet's, so that both
+    // can go into one shader.
+    const std::string common_begin = "#ifndef SLUT_SHADER_COMMON", common_end = "#endif // SLUT_SHADER_COMMON";
+    const std::string iso = read_text(kShaderDir + "scatterlut_airlight.glsl");
+    const std::string &hg = snippet("glsl");
+    const auto common = [&](const std::string &t) {
+        const size_t b = t.find(common_begin), e = t.find(common_end);
+        return (b == std::string::npos || e == std::string::npos) ? std::string() : t.substr(b, e - b);
+    };
+    EXPECT_FALSE(common(hg).empty());
+    EXPECT_EQ(common(hg), common(iso));
+    for (const std::string lang : {"glsl", "hlsl", "essl"}) {
+        const std::string &text = snippet(lang);
+        const auto it = std::find_if(text.begin(), text.end(), [](char c) { return static_cast<unsigned char>(c) > 127; });
+        EXPECT_EQ(it, text.end()) << lang << ": non-ASCII byte at offset " << (it - text.begin());
+    }
+}
+
+// The queries exercise every regime of Gs_g and every branch of the radiance (at least 20
+// times each, per g): the table, large u and small w at both ends, the two-sample bracket and
+// its fallback to the segment's integral, infinite rays, zero and divergent limits, clear channels.
+TEST(ShaderAirlightHgQueries, CoverEveryRegimeAndBranch) {
+    for (double g : kPhaseGs) {
+        SCOPED_TRACE("g = " + std::to_string(g));
+        const scatterlut::AirlightHgTable &table = table_for(g);
+        const auto regime = [&](double u, double w) { return w < table.w_min() ? 2 : (u > table.u_max() ? 1 : 0); };
+        int gs[3] = {0, 0, 0}, viewer[3] = {0, 0, 0}, far[3] = {0, 0, 0};
+        int two_samples = 0, fallback = 0, infinite = 0, zero = 0, divergent = 0, clear = 0;
+        for (const Query &q : queries(g)) {
+            if (q.label == "Gs") ++gs[regime(q.gpu[1], q.gpu[2])];
+            if (q.label == "rgb" && q.gpu[1 + static_cast<int>(q.gpu[12])] == 0.0f) ++clear;
+            if (q.label != "radiance") continue;
+            if (std::isinf(q.reference)) ++divergent;
+            if (q.reference == 0.0) ++zero;
+            const double sigma_t = static_cast<double>(q.gpu[1]) + q.gpu[2];
+            const double gamma = std::atan2(static_cast<double>(q.gpu[5]), static_cast<double>(q.gpu[6]));
+            const double s_over_D = std::isinf(q.gpu[7]) ? HUGE_VAL : q.gpu[7] / static_cast<double>(q.gpu[4]);
+            const slut_hg_airlight_ends e =
+                slut_hg_airlight_setup_ends(sigma_t * q.gpu[4], std::sin(gamma), std::cos(gamma), s_over_D);
+            if (!(q.gpu[1] > 0.0f) || !(q.gpu[3] > 0.0f) || !(q.gpu[7] > 0.0f)) continue;
+            infinite += std::isinf(q.gpu[7]);
+            if (e.samples == 0) {
+                ++fallback;
+                continue;
+            }
+            ++viewer[regime(e.u, e.w2)];
+            const double a = e.w2 * table.scaled_tail(e.u, e.w2);
+            double b = 0.0;
+            if (e.w1 > 0.0) {
+                ++far[regime(e.u, e.w1)];
+                b = e.far_attenuation * e.w1 * table.scaled_tail(e.u, e.w1);
+            }
+            (b <= 0.5 * a && a > 0.0) ? ++two_samples : ++fallback;
+        }
+        std::printf("g=%g  Gs: table/large-u/small-w %d/%d/%d | radiance: viewer end %d/%d/%d, far end %d/%d/%d, "
+                    "two samples %d, segment integral %d, infinite %d, zero %d, divergent %d | rgb clear %d\n",
+                    g, gs[0], gs[1], gs[2], viewer[0], viewer[1], viewer[2], far[0], far[1], far[2], two_samples,
+                    fallback, infinite, zero, divergent, clear);
+        for (int r = 0; r < 3; ++r) {
+            EXPECT_GE(gs[r], 20) << "Gs regime " << r;
+            EXPECT_GE(viewer[r], 20) << "viewer-end regime " << r;
+            EXPECT_GE(far[r], 20) << "far-end regime " << r;
+        }
+        EXPECT_GE(two_samples, 20);
+        EXPECT_GE(fallback, 20);
+        EXPECT_GE(infinite, 20);
+        EXPECT_GE(zero, 3);
+        EXPECT_GE(divergent, 20);
+        EXPECT_GE(clear, 20);
+    }
+}
+
+// ------------------------------------------------------------------------- glslang
+
+TEST(ShaderAirlightHgGlslang, GlslEsslAndHlslCompile) {
+    if (kGlslang.empty()) SLUT_SKIP_OR_FAIL("glslangValidator was not found at configure time (Debian: glslang-tools)");
+    for (bool hw : {false, true}) {
+        SCOPED_TRACE(hw ? "SLUT_AIRLIGHT_HARDWARE_FILTER" : "texel-fetch path");
+        const std::string tag = hw ? "_hw" : "";
+        EXPECT_EQ(glslang("hg_compute" + tag + ".comp", glsl_compute_source(hw), ""), "");
+        EXPECT_EQ(glslang("hg_vk_compute" + tag + ".comp", glsl_compute_source(hw),
+                          "-V -o " + quoted(scratch_dir() + "/hg_vk_compute" + tag + ".spv")),
+                  "");
+        EXPECT_EQ(glslang("hg_compute" + tag + ".hlsl", hlsl_compute_source(hw),
+                          "-D -V -e main -S comp -o " + quoted(scratch_dir() + "/hg_compute_hlsl" + tag + ".spv")),
+                  "");
+    }
+    EXPECT_EQ(glslang("hg_fragment.frag", glsl_fragment_source("330", "glsl"), ""), "");
+    EXPECT_EQ(glslang("hg_fragment_es.frag", glsl_fragment_source("300 es", "essl"), ""), "");
+    EXPECT_EQ(glslang("hg_pixel.hlsl", hlsl_pixel_source(),
+                      "-D -V -e main -S frag -o " + quoted(scratch_dir() + "/hg_pixel_hlsl.spv")),
+              "");
+}
+
+// ----------------------------------------------------------------------------- GPU
+
+class GpuAirlightHg : public ::testing::Test {
+protected:
+    void SetUp() override {
+#if SLUT_HAVE_EGL
+        if (!gpu().ok) SLUT_SKIP_OR_FAIL("no GPU context: " + gpu().why_not);
+        RecordProperty("renderer", gpu().renderer);
+        std::printf("[ renderer ] %s\n", gpu().renderer.c_str());
+#else
+        SLUT_SKIP_OR_FAIL("built without EGL/OpenGL headers and libraries (Debian: libegl-dev, libgl-dev)");
+#endif
+    }
+};
+
+TEST_F(GpuAirlightHg, GlslMatchesTheCppSamplerAndTheExactRadiance) {
+#if SLUT_HAVE_EGL
+    for (double g : kPhaseGs) {
+        std::string error;
+        const std::vector<float> got = run_on_gpu(glsl_compute_source(false), g, &error);
+        ASSERT_EQ(error, "");
+        expect_agreement(got, g, "glsl", this);
+    }
+#endif
+}
+
+TEST_F(GpuAirlightHg, HlslMatchesTheCppSamplerAndTheExactRadiance) {
+#if SLUT_HAVE_EGL
+    if (kGlslang.empty() || kSpirvCross.empty())
+        SLUT_SKIP_OR_FAIL("running the HLSL needs glslangValidator and spirv-cross (Debian: glslang-tools, spirv-cross)");
+    std::string error;
+    const std::string glsl = hlsl_compute_to_glsl("hg_fetch", hlsl_compute_source(false), &error);
+    ASSERT_EQ(error, "");
+    for (double g : kPhaseGs) {
+        const std::vector<float> got = run_on_gpu(glsl, g, &error);
+        ASSERT_EQ(error, "");
+        expect_agreement(got, g, "hlsl", this);
+    }
+#endif
+}
