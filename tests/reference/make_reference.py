@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """30-digit reference values for scatterlut's tests (tests/reference/README.md).
 
-    python3 tests/reference/make_reference.py            # writes F_ref.json, N_ref.json, physical_ref.json, hg_ref.json
+    python3 tests/reference/make_reference.py            # writes F_ref.json, N_ref.json, physical_ref.json, hg_ref.json, surface_ref.json
     python3 tests/reference/make_reference.py --check    # recomputes a subset, compares with the files
 
 Every value is an integral computed with mpmath by adaptive tanh-sinh quadrature on panels
@@ -38,6 +38,7 @@ WORK_DPS = 45        # working precision of the quadratures (decimal digits)
 CLOSED_DPS = 110     # closed forms (their complex E1 terms cancel by up to ~20 digits)
 OUT_DIGITS = 25      # significant digits written
 AGREE_REL = 1e-30    # the two routes to every value must agree this well (relative; reached: <= 1e-37)
+SURFACE_AGREE_REL = 1e-30  # the same for the surface terms
 CHECK_REL = 1e-22    # --check: recomputed vs committed (the files hold 25 digits)
 
 
@@ -573,6 +574,105 @@ def hg_near_light_case(phase_g, sigma_s, sigma_a, intensity, normal, eye_dir, li
 
 
 # --------------------------------------------------------------------------------------------
+# Surfaces lit through the medium (Sun et al. 2005; docs/PHYSICS.md 1.5). T = sigma_t D,
+# theta = angle between the normal (n = 1) or the mirror direction (Phong exponent n) and the
+# direction from the surface point to the light:
+#   G_n(T, theta) = int_0^pi A(T, gamma) sin(gamma) K_n(theta, gamma) dgamma
+#   A sin(gamma)  = 2 Im[exp(-T e^{i gamma}) E_1(T (1 - e^{i gamma}))]      (pi - gamma at T = 0)
+#   K_n           = int_0^{2 pi} max(cos(theta) cos(gamma) + sin(theta) sin(gamma) cos(phi), 0)^n dphi
+
+def surface_incident_sin(T, gamma):
+    """A(T, gamma) sin(gamma) from the complex exponential integral."""
+    if T == 0:
+        return mp.pi - gamma
+    e = mpmath.expj(gamma)
+    return 2 * mpmath.im(mpmath.exp(-T * e) * mpmath.e1(T * (1 - e)))
+
+
+def surface_incident_sin_xi(T, gamma):
+    """The same from its definition: 2 int_{gamma/2}^{pi/2} exp(-T (cos(gamma) + sin(gamma) tan(xi))) dxi."""
+    c, s = mpmath.cos(gamma), mpmath.sin(gamma)
+    return 2 * mp.quad(lambda xi: mpmath.exp(-T * (c + s * mpmath.tan(xi))), [gamma / 2, mp.pi / 2], method="tanh-sinh")
+
+
+def surface_kernel(n, theta, gamma):
+    """K_n in closed form: 2 pi (a^2-b^2)^{n/2} P_n(a/sqrt(a^2-b^2)) for the whole ring inside the lobe,
+    2 B(n+1, 1/2) c^{n+1/2} (2b)^{-1/2} 2F1(1/2, 1/2; n+3/2; c/(2b)), c = a + b, where it crosses the edge."""
+    a = mpmath.cos(theta) * mpmath.cos(gamma)
+    b = mpmath.sin(theta) * mpmath.sin(gamma)
+    if b <= 0:
+        return 2 * mp.pi * a ** n if a > 0 else mpf(0)
+    if a >= b:
+        r = mpmath.sqrt((a - b) * (a + b))
+        return 2 * mp.pi * r ** n * mpmath.legenp(n, 0, a / r)
+    if a <= -b:
+        return mpf(0)
+    c = a + b
+    return 2 * mpmath.beta(n + 1, mpf(1) / 2) * c ** (n + mpf(1) / 2) / mpmath.sqrt(2 * b) * \
+        mpmath.hyp2f1(mpf(1) / 2, mpf(1) / 2, n + mpf(3) / 2, c / (2 * b))
+
+
+def surface_kernel_phi(n, theta, gamma):
+    """K_n by tanh-sinh quadrature over the part of the ring inside the lobe."""
+    a = mpmath.cos(theta) * mpmath.cos(gamma)
+    b = mpmath.sin(theta) * mpmath.sin(gamma)
+    if a <= -b:
+        return mpf(0)
+    end = mp.pi if a >= b else mpmath.acos(-a / b)
+    pts = [mpf(0)] + [k / mpmath.sqrt(n) for k in (1, 4, 16) if k / mpmath.sqrt(n) < end] + [end]  # the peak at phi = 0
+    return 2 * quad_ts(lambda p: (a + b * mpmath.cos(p)) ** n, pts, "K_n(%d, %s, %s)" % (n, theta, gamma))
+
+
+def surface_breaks(n, T, theta, ratio):
+    g1 = abs(mp.pi / 2 - theta)
+    pts = {mpf(0), mp.pi, g1, mp.pi - g1}
+    if n > 1:
+        w = 1 / mpmath.sqrt(n)
+        pts.add(theta)
+        for x in ladder(w / 4, 2 * mp.pi, ratio):
+            pts.update((theta - x, theta + x))
+    if T > 0:
+        pts.update(ladder(1 / (4 * T), mp.pi, ratio))
+    pts = sorted(p for p in pts if 0 <= p <= mp.pi)
+    if ratio != 2:  # the second route: every panel split once more, off the first route's points
+        pts = sorted(set(pts) | set(a + (b - a) * mpf(3) / 7 for a, b in zip(pts, pts[1:])))
+    return pts
+
+
+def surface_case(quantity, sigma_s, sigma_a, intensity, distance, theta, exponent):
+    """E_ss (quantity "surface", exponent 1) or S_n (quantity "surface_specular") in W/m^2."""
+    st = mpf(sigma_s) + mpf(sigma_a)
+    T, th, n = st * mpf(distance), mpf(theta), exponent
+    pre = mpf(sigma_s) * mpf(intensity) / (4 * mp.pi * mpf(distance))
+    what = "%s(%r, %r, %r, %r, %r, %r)" % (quantity, sigma_s, sigma_a, intensity, distance, theta, exponent)
+    f = lambda g: surface_incident_sin(T, g) * surface_kernel(n, th, g)
+    # Two tanh-sinh routes on different panels: K_n has (gamma - gamma_1)^{3/2} terms where the
+    # ring of directions starts to cross the lobe's edge, and A sin(gamma) a u ln u term at
+    # gamma = 0, on which Gauss-Legendre converges slowly and can stop early (it agreed to only
+    # 1e-15 here); tanh-sinh is exact to working precision at such panel ends.
+    G = quad_ts(f, surface_breaks(n, T, th, 2), what)
+    G2 = quad_ts(f, surface_breaks(n, T, th, 3), what + " (second panels)")
+    agree(what, G, G2, SURFACE_AGREE_REL)
+    # The closed forms against their definitions, at the lobe's centre and off it.
+    for g in (th / 2 + mpf("0.1"), th + 1 / mpmath.sqrt(4 * n), mp.pi - th / 3):
+        if 0 < g < mp.pi:
+            agree(what + " vs K_n by phi quadrature", surface_kernel(n, th, g), surface_kernel_phi(n, th, g))
+            agree(what + " vs A sin(gamma) by xi quadrature", surface_incident_sin(T, g), surface_incident_sin_xi(T, g))
+    if n == 1 and T < mpf("0.002"):  # the limit sigma_t -> 0 in closed form (E: complete elliptic, 2nd kind)
+        G0 = quad_ts(lambda g: surface_incident_sin(0, g) * surface_kernel(1, th, g), surface_breaks(1, 0, th, 2), what)
+        with mp.workdps(CLOSED_DPS):  # mpmath's ellipe(m) loses ~20 digits as m -> 1 (theta -> pi/2)
+            closed = 2 * mp.pi * (mpmath.cos(th) + mpmath.ellipe(mpmath.sin(th) ** 2))
+        agree(what + " at T = 0 vs 2 pi (cos theta + E(sin theta))", G0, +closed)
+    out = {"quantity": quantity, "sigma_s": sigma_s, "sigma_a": sigma_a, "intensity": intensity,
+           "distance": distance, "theta": theta}
+    if quantity == "surface_specular":
+        out["exponent"] = exponent
+    out["G"] = G
+    out["E"] = pre * G
+    return out
+
+
+# --------------------------------------------------------------------------------------------
 # Inputs. The corners are the hard edges of the tables' domains; the other points were drawn
 # at random once (log-uniform where the quantity varies over decades) and are fixed here.
 
@@ -867,6 +967,24 @@ NEAR_LIGHT_CASES = [
     (9.691564325926894, 19.268290791692518, 1.0, (0.0, 0.0, 1.0), (0.08795362182920068, 0.9713838772912838, 0.22062983330836716), (0.15657923732083967, -0.07102971376577873, 0.25007460521659514), 0.4844940349705861),
 ]
 
+# The surface terms (surface_ref.json): sigma_t = 1/m exactly, so T = distance, at every
+# T x theta x exponent of SURFACE_T, SURFACE_THETA, SURFACE_EXPONENTS, then a few off the grid.
+PI = 3.141592653589793             # the double nearest pi (1.2e-16 below it)
+SURFACE_T = [0.001, 0.1, 1.0, 10.0, 40.0]
+SURFACE_THETA = [0.0, 0.3, PIO2, 2.5, PI]
+SURFACE_EXPONENTS = [1, 20, 1000]
+SURFACE_INPUTS = [("surface" if n == 1 else "surface_specular", 0.75, 0.25, 100.0, T, th, n)
+                  for n in SURFACE_EXPONENTS for T in SURFACE_T for th in SURFACE_THETA] + [
+    ("surface", 0.02, 0.005, 3.0, 7.5, 1.2, 1),
+    ("surface", 2.0, 1.0, 50.0, 0.004, 3.0, 1),
+    ("surface", 0.1, 0.0, 1.0, 0.5, 1e-08, 1),
+    ("surface", 0.1, 0.0, 1.0, 0.5, PIO2 + 1e-09, 1),
+    ("surface_specular", 0.02, 0.005, 3.0, 7.5, 1.2, 5),
+    ("surface_specular", 0.3, 0.2, 10.0, 3.0, 0.01, 100),
+    ("surface_specular", 0.3, 0.2, 10.0, 3.0, 1.9, 300),
+    ("surface_specular", 0.05, 0.01, 80.0, 12.0, 0.7, 2),
+]
+
 # The anisotropic cases: every geometry at every asymmetry of HG_G (hg_ref.json).
 HG_G = [-0.9, -0.5, 0.0, 0.3, 0.8, 0.95, 0.99]
 HG_AIRLIGHT_GEOMETRIES = [
@@ -916,17 +1034,19 @@ CHECK_FIRST = [
     ("hg_airlight", HG_AIRLIGHT_INPUTS.index((0.99,) + HG_AIRLIGHT_GEOMETRIES[0])),   # forward peak beside the light
     ("hg_airlight", HG_AIRLIGHT_INPUTS.index((-0.9,) + HG_AIRLIGHT_GEOMETRIES[1])),   # backward, gamma -> pi
     ("hg_near_light", HG_NEAR_LIGHT_INPUTS.index((0.95,) + HG_NEAR_LIGHT_GEOMETRIES[2])),  # r = 0
+    ("surface", SURFACE_INPUTS.index(("surface", 0.75, 0.25, 100.0, 40.0, PI, 1))),  # light behind, dense
 ]
 
 
-KINDS = ("F", "N", "airlight", "near_light", "hg_airlight", "hg_near_light")
+KINDS = ("F", "N", "airlight", "near_light", "hg_airlight", "hg_near_light", "surface")
 
 
 def check_order(n):
     """The first n (file, index) pairs: CHECK_FIRST, then the rest of each file spread evenly."""
     order = list(CHECK_FIRST)
     sizes = {"F": len(F_INPUTS), "N": len(N_INPUTS), "airlight": len(AIRLIGHT_INPUTS), "near_light": len(NEAR_LIGHT_INPUTS),
-             "hg_airlight": len(HG_AIRLIGHT_INPUTS), "hg_near_light": len(HG_NEAR_LIGHT_INPUTS)}
+             "hg_airlight": len(HG_AIRLIGHT_INPUTS), "hg_near_light": len(HG_NEAR_LIGHT_INPUTS),
+             "surface": len(SURFACE_INPUTS)}
     rest = [(k, i) for k in KINDS for i in range(sizes[k]) if (k, i) not in order]
     rest.sort(key=lambda ki: (ki[1] / sizes[ki[0]], ki[0]))
     return (order + rest)[:n]
@@ -956,7 +1076,7 @@ def N_record(p):
 def physical_record(c):
     out = {}
     for k, v in c.items():
-        if k == "L":
+        if k in ("L", "G", "E"):
             out[k] = fmt(v)
         elif k == "length":
             out[k] = json_number(v)
@@ -978,6 +1098,13 @@ HG_CONVENTIONS = ("as physical_ref.json, with the Henyey-Greenstein phase p(thet
                   "at the point (light -> point) and the direction from the point to the viewer: airlight cos theta = "
                   "(D cos(gamma) - x)/d(x), near_light cos theta = -(x + eye_dir.light_pos)/d(x)")
 
+SURFACE_CONVENTIONS = ("surface point in an unbounded medium with isotropic phase 1/(4 pi), point light of intensity "
+                       "I0 (W/sr) at distance D (m); theta = angle between the normal (quantity surface) or the mirror "
+                       "direction rho (surface_specular) and the direction from the point to the light; L_in(omega) = "
+                       "airlight along the infinite ray from the point in direction omega; surface: E = int_{n.omega>0} "
+                       "L_in n.omega d omega; surface_specular: E = int L_in max(omega.rho, 0)^exponent d omega (no "
+                       "horizon clipping, Sun et al. 2005); both W/m^2; G = E 4 pi D/(sigma_s I0), dimensionless")
+
 
 def compute(kind, i):
     if kind == "F":
@@ -990,6 +1117,8 @@ def compute(kind, i):
         return hg_airlight_case(*HG_AIRLIGHT_INPUTS[i])
     if kind == "hg_near_light":
         return hg_near_light_case(*HG_NEAR_LIGHT_INPUTS[i])
+    if kind == "surface":
+        return surface_case(*SURFACE_INPUTS[i])
     return near_light_case(*NEAR_LIGHT_INPUTS[i])
 
 
@@ -1001,7 +1130,7 @@ def generate_all(log):
     files = {}
     for kind, count in (("F", len(F_INPUTS)), ("N", len(N_INPUTS)), ("airlight", len(AIRLIGHT_INPUTS)),
                         ("near_light", len(NEAR_LIGHT_INPUTS)), ("hg_airlight", len(HG_AIRLIGHT_INPUTS)),
-                        ("hg_near_light", len(HG_NEAR_LIGHT_INPUTS))):
+                        ("hg_near_light", len(HG_NEAR_LIGHT_INPUTS)), ("surface", len(SURFACE_INPUTS))):
         t0 = time.time()
         files[kind] = [record(kind, compute(kind, i)) for i in range(count)]
         log("%-10s %4d values  %6.1f s" % (kind, count, time.time() - t0))
@@ -1010,6 +1139,7 @@ def generate_all(log):
         "N_ref.json": {"definition": N_DEFINITION, "points": files["N"]},
         "physical_ref.json": {"conventions": PHYSICAL_CONVENTIONS, "cases": files["airlight"] + files["near_light"]},
         "hg_ref.json": {"conventions": HG_CONVENTIONS, "cases": files["hg_airlight"] + files["hg_near_light"]},
+        "surface_ref.json": {"conventions": SURFACE_CONVENTIONS, "cases": files["surface"]},
     }
 
 
@@ -1061,6 +1191,7 @@ def committed_entries(directory):
     hg = entries("hg_ref.json", "cases")
     hg_air = [c for c in hg if c.get("quantity") == "airlight"]
     hg_near = [c for c in hg if c.get("quantity") == "near_light"]
+    surface = entries("surface_ref.json", "cases")
     expected = {
         "F": [{"u": u, "v": v} for u, v in F_INPUTS],
         "N": [{"T": T, "g": g, "r": r, "S": json_number(S)} for T, g, r, S in N_INPUTS],
@@ -1072,10 +1203,13 @@ def committed_entries(directory):
         "hg_near_light": [{"phase_g": c[0], "sigma_s": c[1], "sigma_a": c[2], "intensity": c[3], "normal": list(c[4]),
                            "eye_dir": list(c[5]), "light_pos": list(c[6]), "length": json_number(c[7])}
                           for c in HG_NEAR_LIGHT_INPUTS],
+        "surface": [dict(zip(("quantity", "sigma_s", "sigma_a", "intensity", "distance", "theta"), c[:6]),
+                         **({"exponent": c[6]} if c[0] == "surface_specular" else {})) for c in SURFACE_INPUTS],
     }
-    have = {"F": F, "N": N, "airlight": air, "near_light": near, "hg_airlight": hg_air, "hg_near_light": hg_near}
+    have = {"F": F, "N": N, "airlight": air, "near_light": near, "hg_airlight": hg_air, "hg_near_light": hg_near,
+            "surface": surface}
     names = {"F": "F_ref.json", "N": "N_ref.json", "airlight": "physical_ref.json", "near_light": "physical_ref.json",
-             "hg_airlight": "hg_ref.json", "hg_near_light": "hg_ref.json"}
+             "hg_airlight": "hg_ref.json", "hg_near_light": "hg_ref.json", "surface": "surface_ref.json"}
     for kind, want in expected.items():
         got = have[kind]
         if len(got) != len(want):
@@ -1097,7 +1231,7 @@ def run_check(directory, n, log):
     for kind, i in check_order(n):
         fresh = record(kind, compute(kind, i))
         old = have[kind][i]
-        for key in ("F", "tail", "N", "H", "E", "L"):
+        for key in ("F", "tail", "N", "H", "E", "L", "G"):
             if key not in fresh:
                 continue
             try:
@@ -1111,7 +1245,7 @@ def run_check(directory, n, log):
             worst = max(worst, e)
             if e > CHECK_REL:
                 failures.append("%s: %s entry %d (%s): %s = %s recomputed, %s committed (relative %s > %g)"
-                                % (names[kind], kind, i, json.dumps({k: v for k, v in old.items() if k not in ("F", "tail", "N", "H", "E", "L")}),
+                                % (names[kind], kind, i, json.dumps({k: v for k, v in old.items() if k not in ("F", "tail", "N", "H", "E", "L", "G")}),
                                    key, fresh[key], old[key], mpmath.nstr(e, 3), CHECK_REL))
     log("checked %d points in %.1f s; worst relative difference %s" % (n, time.time() - t0, mpmath.nstr(worst, 3)))
     return failures
@@ -1125,7 +1259,7 @@ def main(argv):
     ap.add_argument("--dir", default=HERE, help="where the JSON files are read and written (default: this script's directory)")
     args = ap.parse_args(argv)
     total = len(F_INPUTS) + len(N_INPUTS) + len(AIRLIGHT_INPUTS) + len(NEAR_LIGHT_INPUTS) + len(HG_AIRLIGHT_INPUTS) + \
-        len(HG_NEAR_LIGHT_INPUTS)
+        len(HG_NEAR_LIGHT_INPUTS) + len(SURFACE_INPUTS)
     if not 1 <= args.points <= total:
         ap.error("--points: expected an integer in [1, %d], got %d" % (total, args.points))
     mp.dps = WORK_DPS

@@ -1,0 +1,84 @@
+// The surface terms' runtime facet (kinds/runtime_kind.hpp): the eval quantities "surface"
+// (E_ss, the scattered irradiance of a surface in the medium) and "surface_specular" (S_n, the
+// Phong-lobe-weighted incident airlight) of Sun et al. 2005 (docs/PHYSICS.md §1.5), exact by
+// quadrature (scatterlut/surface.hpp). No table kind for them exists yet: its name is
+// reserved here, a file of that kind is refused with a clear message, and eval answers
+// "table": null.
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "eval.hpp"
+#include "kinds/runtime_kind.hpp"
+#include "scatterlut/surface.hpp"
+
+namespace scatterlut {
+namespace {
+
+constexpr const char *kKindSurfaceG = "surface_G"; // G0/G_n tables: not written by this version
+
+SurfaceQuery surface_query(const nlohmann::json &q, const char *theta_field) {
+    SurfaceQuery s;
+    s.sigma_s_per_m = eval_number_field(q, "sigma_s");
+    s.sigma_a_per_m = eval_number_field(q, "sigma_a");
+    s.intensity_W_per_sr = eval_number_field(q, "intensity");
+    s.distance_m = eval_number_field(q, "distance");
+    s.theta_rad = eval_number_field(q, theta_field);
+    if (!(s.theta_rad >= 0.0 && s.theta_rad <= 3.14159265358979323846 + 1e-15))
+        throw std::invalid_argument(std::string("field \"") + theta_field + "\" must lie in [0, pi] (rad)");
+    return s;
+}
+
+// "exponent": an integer in [1, kSurfaceMaxExponent] (a JSON integer, or a number with no
+// fractional part).
+int surface_exponent(const nlohmann::json &q) {
+    const std::string range = "[1, " + std::to_string(kSurfaceMaxExponent) + "]";
+    if (!q.contains("exponent")) throw std::invalid_argument("missing field \"exponent\" (Phong exponent n, an integer in " + range + ")");
+    const auto &v = q.at("exponent");
+    if (!v.is_number()) throw std::invalid_argument("field \"exponent\" must be an integer in " + range);
+    const double n = v.get<double>();
+    if (!(n >= 1.0 && n <= kSurfaceMaxExponent && n == std::floor(n)))
+        throw std::invalid_argument("field \"exponent\" must be an integer in " + range);
+    return static_cast<int>(n);
+}
+
+class SurfaceRuntime final : public RuntimeKind {
+public:
+    const char *name() const override { return kKindSurfaceG; }
+    std::shared_ptr<const RuntimeSampler> make_sampler(Table) const override {
+        throw std::invalid_argument(std::string("table kind '") + kKindSurfaceG +
+                                    "': this version computes the surface terms exactly only and reads no such table");
+    }
+    std::vector<std::string> eval_quantities() const override { return {"surface", "surface_specular"}; }
+    void answer_eval(const std::string &quantity, const nlohmann::json &q, nlohmann::json &out,
+                     const EvalTables &) const override {
+        if (quantity == "surface") {
+            const SurfaceQuery s = surface_query(q, "theta_s");
+            eval_put(out, "exact", surface_irradiance_exact(s)); // validates the query
+            out["table"] = nullptr;
+            eval_put(out, "no_extinction", surface_irradiance_no_extinction(s));
+            const double T = (s.sigma_s_per_m + s.sigma_a_per_m) * s.distance_m;
+            eval_put(out, "direct", s.intensity_W_per_sr * std::exp(-T) * std::fmax(std::cos(s.theta_rad), 0.0) /
+                                        (s.distance_m * s.distance_m));
+            return;
+        }
+        const SurfaceQuery s = surface_query(q, "theta_r"); // quantity "surface_specular"
+        const int n = surface_exponent(q);
+        eval_put(out, "exact", surface_specular_exact(s, n)); // validates the query
+        out["table"] = nullptr;
+        const double T = (s.sigma_s_per_m + s.sigma_a_per_m) * s.distance_m;
+        eval_put(out, "direct", s.intensity_W_per_sr * std::exp(-T) * std::pow(std::fmax(std::cos(s.theta_rad), 0.0), n) /
+                                    (s.distance_m * s.distance_m));
+    }
+};
+
+} // namespace
+
+const RuntimeKind &surface_runtime_kind() {
+    static const SurfaceRuntime kind;
+    return kind;
+}
+
+} // namespace scatterlut
