@@ -83,6 +83,10 @@ const server = await startServer({ tables, shaders: opt('--shaders') });
 const browser = await puppeteer.launch({
 	executablePath: chromium, headless: true,
 	args: ['--headless=new', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox', '--disable-gpu-sandbox'],
+	// The page's first frame blocks its renderer until SwiftShader has compiled the shader, and
+	// every DevTools call with it: puppeteer's default limit per call (180 s) would cut the
+	// page wait short.
+	protocolTimeout: kPageWait_ms + 60000,
 });
 let frame;
 try {
