@@ -4,8 +4,10 @@
 // renders the web demo's fixed view (fog.mjs: 480 x 270, the street, its six lamps; the rays
 // end on the ground, the far wall or the slab) with the airlight of its lamps only (no near
 // light), once per given GLSL ES snippet (scatterlut_airlight.essl, e.g. one assembled
-// before a change) and once with the closed form engines use (Macklin 2010, × e^{−σ_t D}),
-// into an R32F target. Rounds A B C … with the order rotated each round; per frame
+// before a change), once with the closed form engines use (Macklin 2010, × e^{−σ_t D}) and
+// once with Sun et al. 2005's two-fetch form on a plain 64 x 64 F(u, v) table (u in [0, 10],
+// v in [0, π/2], linear axes, bilinear, clamped; F by composite Simpson here), as
+// bench/bench_gpu_pixel.cpp writes them for llvmpipe, into an R32F target. Rounds A B C … with the order rotated each round; per frame
 // drawArrays + a one-pixel readPixels (which waits for the frame), wall clock; per round each
 // method's median frame, and its ratio to the first snippet in the same round. Prints per
 // method: compile + link ms, the first frame (SwiftShader builds the pipeline there), the
@@ -68,10 +70,25 @@ const methods = snippetPaths.map((p, k) => {
 	return { name: `${String.fromCharCode(65 + k)}: ${p}`, snippet: readFileSync(air, 'utf8'),
 		nearSnippet: nl ? readFileSync(nl, 'utf8') : '' };
 });
-methods.push({ name: 'closed form × e^{−σ_t D} (Macklin 2010)', snippet: '' });
+methods.push({ name: 'closed form × e^{−σ_t D} (Macklin 2010)', snippet: '', builtin: 'closed' });
+methods.push({ name: 'Sun et al. 2005, 64² F table, two fetches', snippet: '', builtin: 'sun' });
+
+// Sun et al.'s F(u, v) = ∫_0^v e^{−u tan ξ} dξ on the Rain sample's plain grid: composite
+// Simpson, 4096 intervals (the integrand is smooth up to ξ = π/2, where it vanishes for u > 0).
+const kFCount = 64, kFUMax = 10.0;
+const fTable = new Float32Array(kFCount * kFCount);
+for (let j = 0; j < kFCount; ++j) {
+	for (let i = 0; i < kFCount; ++i) {
+		const u = (kFUMax * i) / (kFCount - 1), v = (0.5 * Math.PI * j) / (kFCount - 1), n = 4096, h = v / n;
+		const f = (x) => (x >= 0.5 * Math.PI ? (u > 0 ? 0 : 1) : Math.exp(-u * Math.tan(x)));
+		let sum = f(0) + f(v);
+		for (let k = 1; k < n; ++k) sum += (k & 1 ? 4 : 2) * f(k * h);
+		fTable[j * kFCount + i] = (sum * h) / 3;
+	}
+}
 
 // The page: everything inside one evaluate (no server; WebGL2 on about:blank).
-async function pageBench({ methods, values, air, nearTable, rounds, frames, lamps }) {
+async function pageBench({ methods, values, air, nearTable, fTable, fCount, fUMax, rounds, frames, lamps }) {
 	const W = 480, H = 270;
 	const canvas = document.createElement('canvas');
 	canvas.width = W; canvas.height = H;
@@ -96,6 +113,17 @@ async function pageBench({ methods, values, air, nearTable, rounds, frames, lamp
 			new Float32Array(nearTable.values));
 		gl.activeTexture(gl.TEXTURE0);
 	}
+	const haveFloatLinear = gl.getExtension('OES_texture_float_linear') !== null;
+	const fTex = gl.createTexture();
+	gl.activeTexture(gl.TEXTURE2);
+	gl.bindTexture(gl.TEXTURE_2D, fTex);
+	gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.LINEAR);
+	gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
+	gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
+	gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+	gl.texImage2D(gl.TEXTURE_2D, 0, haveFloatLinear ? gl.R32F : gl.R16F, fCount, fCount, 0, gl.RED, gl.FLOAT,
+		new Float32Array(fTable));
+	gl.activeTexture(gl.TEXTURE0);
 	const target = gl.createTexture();
 	gl.bindTexture(gl.TEXTURE_2D, target);
 	gl.texStorage2D(gl.TEXTURE_2D, 1, gl.R32F, W, H);
@@ -152,6 +180,30 @@ float closed_points(vec3 eye, vec3 d, vec3 light, float s, float ss, float sa, f
                      5.0, 0.2, lights[k].w, vec3(0.0, 0.0, 1.0), -d, rel, slut_inf(), 1.0, false) * att;
         }
     }`;
+	const sun = `
+uniform sampler2D f_table;
+uniform float f_u_max;
+float sun_F(float u, float v) {
+    vec2 unit = clamp(vec2(u / f_u_max, v / 1.5707963), 0.0, 1.0);
+    vec2 size = vec2(textureSize(f_table, 0));
+    return textureLod(f_table, (unit * (size - 1.0) + 0.5) / size, 0.0).r;
+}
+float sun2005(float ss, float sa, float i0, float dist, float sg, float cg, float len) {
+    float st = ss + sa;
+    float a1 = st * dist * sg;
+    float a0 = ss * i0 * exp(-st * dist * cg) / (6.2831853 * dist * sg);
+    float v_far = 0.7853982 + 0.5 * atan((len - dist * cg) / (dist * sg));
+    float v_near = 0.5 * atan(sg, cg);
+    return a0 * (sun_F(a1, v_far) - sun_F(a1, v_near));
+}
+float sun_points(vec3 eye, vec3 d, vec3 light, float s, float ss, float sa, float i0) {
+    vec3 to_light = light - eye;
+    float dist = length(to_light);
+    float sin_part = length(cross(d, to_light)), cos_part = dot(d, to_light);
+    float n = sqrt(sin_part * sin_part + cos_part * cos_part);
+    return sun2005(ss, sa, i0, dist, sin_part / n, cos_part / n, min(s, 1e30));
+}
+`;
 	const main = (call, withNear) => `
 uniform sampler2D airlight_table;${withNear ? '\nuniform sampler3D near_table;\nuniform vec4 near_T, near_g, near_r;\nuniform ivec3 near_warps;' : ''}
 uniform vec4 air_u, air_w;
@@ -184,6 +236,7 @@ void main() {
 	const snippetCall = 'slut_airlight_radiance_points(airlight_table, slut_airlight_table(air_u.y, air_u.z, int(air_u.w), ' +
 		'air_w.x, int(air_w.w)), eye, d, lights[k].xyz, s, fog_sigma.x, fog_sigma.y, lights[k].w)';
 	const closedCall = 'closed_points(eye, d, lights[k].xyz, s, fog_sigma.x, fog_sigma.y, lights[k].w)';
+	const sunCall = 'sun_points(eye, d, lights[k].xyz, s, fog_sigma.x, fog_sigma.y, lights[k].w)';
 	const one = new Float32Array(4);
 	const finish = () => gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.FLOAT, one);
 	const results = [];
@@ -200,13 +253,16 @@ void main() {
 		gl.attachShader(program, shader(gl.VERTEX_SHADER, vs));
 		gl.attachShader(program, shader(gl.FRAGMENT_SHADER, '#version 300 es\n' +
 			(m.snippet ? m.snippet + m.nearSnippet + main(snippetCall, m.nearSnippet !== '')
-				: 'precision highp float;\n' + closed + main(closedCall, false))));
+				: m.builtin === 'closed' ? 'precision highp float;\n' + closed + main(closedCall, false)
+					: 'precision highp float;\n' + sun + main(sunCall, false))));
 		gl.linkProgram(program);
 		if (!gl.getProgramParameter(program, gl.LINK_STATUS)) throw new Error(`${m.name}: ${gl.getProgramInfoLog(program)}`);
 		const t1 = performance.now();
 		gl.useProgram(program);
 		const loc = (n) => gl.getUniformLocation(program, n);
 		gl.uniform1i(loc('airlight_table'), 0);
+		gl.uniform1i(loc('f_table'), 2);
+		gl.uniform1f(loc('f_u_max'), fUMax);
 		gl.uniform4f(loc('air_u'), air.u.min, air.u.max, air.u.scale, air.u.count);
 		gl.uniform4f(loc('air_w'), air.w.min, air.w.max, air.w.scale, air.w.count);
 		gl.uniform3fv(loc('eye'), eye); gl.uniform3fv(loc('fwd'), fwd);
@@ -256,7 +312,7 @@ void main() {
 		delete m.frame;
 		delete m.program;
 	}
-	return { renderer, W, H, results };
+	return { renderer, W, H, results, haveFloatLinear };
 }
 
 const browser = await puppeteer.launch({
@@ -271,13 +327,14 @@ try {
 	await page.goto('about:blank');
 	const out = await page.evaluate(pageBench, {
 		methods, values: Array.from(table.values), rounds, frames, lamps,
+		fTable: Array.from(fTable), fCount: kFCount, fUMax: kFUMax,
 		nearTable: near ? { axes: near.axes, values: Array.from(near.values) } : undefined,
 		air: { u: au, w: aw },
 	});
 	const median = (a) => { const s = [...a].sort((x, y) => x - y); return s[Math.floor(s.length / 2)]; };
 	const pixels = out.W * out.H;
 	console.log(`${out.renderer}; ${out.W} x ${out.H} pixels, ${lamps} lamp(s), ${rounds} rounds x ${frames} frames, ` +
-		`table ${basename(tablePath)} (${au.count} x ${aw.count})`);
+		`table ${basename(tablePath)} (${au.count} x ${aw.count}); F table ${out.haveFloatLinear ? 'R32F' : 'R16F (no OES_texture_float_linear)'}`);
 	console.log('| method | compile + link, ms | first frame, ms | frame, ms: median [min-max] of rounds | ns per pixel and lamp | / A: median [min-max] of per-round ratios | max rel. diff from A |');
 	console.log('|---|---|---|---|---|---|---|');
 	const a = out.results[0].round_ms;
