@@ -214,7 +214,7 @@ SLUT_FN void slut_gs_large_u_coefficients(double w, SLUT_OUT_ARRAY(double, c, SL
 #ifdef SLUT_SHADER
 /* The shaders' form: each c_k(w) formed as slut_gs_large_u_coefficients forms it (the same
  * operations in the same order), inside the summation loop instead of in a local array
- * (which a software rasteriser keeps in per-lane memory). */
+ * (see slut_airlight_theta_node_pair). */
 SLUT_FN double slut_gs_large_u(double u, double w) {
     double sw = sin(w), two_cos = 2.0 * cos(w), coefficient_power = sw;
     double sin_k = 0.0, sin_k1 = sw;
@@ -485,10 +485,11 @@ SLUT_FN slut_airlight_geometry slut_airlight_setup(double sigma_s, double sigma_
  * far below any table's error (the table radiance's tolerance there is 1e-3). */
 #ifdef SLUT_SHADER
 /* The shaders' form of one θ-panel's Gauss sum (below): the same node, weight, integrand and
- * order of additions, written out per node with constant array indices. A software
- * rasteriser (SwiftShader, llvmpipe) runs a loop over a constant array with a variable index
- * as per-lane memory accesses of a local copy of the array; with constant indices the nodes
- * and weights are constants. */
+ * order of additions, written out per node with constant array indices. SwiftShader
+ * evidently keeps a constant array read with a variable index (and a local array) in per-lane
+ * memory: the three array forms of the pixel's path cost 1.15–1.4× its frame there, none on
+ * llvmpipe (bench/README.md, "SwiftShader"). With constant indices the nodes and weights are
+ * constants. */
 SLUT_FN double slut_airlight_theta_node_pair(double c, double st, double ct, double sd, double cd, double half_len,
                                              double node, double weight, double part) {
     double t = half_len + (-1.0) * half_len * node;
