@@ -211,6 +211,30 @@ SLUT_FN void slut_gs_large_u_coefficients(double w, SLUT_OUT_ARRAY(double, c, SL
     }
 }
 
+#ifdef SLUT_SHADER
+/* The shaders' form: each c_k(w) formed as slut_gs_large_u_coefficients forms it (the same
+ * operations in the same order), inside the summation loop instead of in a local array
+ * (see slut_airlight_theta_node_pair). */
+SLUT_FN double slut_gs_large_u(double u, double w) {
+    double sw = sin(w), two_cos = 2.0 * cos(w), coefficient_power = sw;
+    double sin_k = 0.0, sin_k1 = sw;
+    double inv_u = 1.0 / u, power = inv_u, sum = 0.0, last = SLUT_HUGE_VAL;
+    for (int k = 0; k < SLUT_GS_SERIES_TERMS; ++k) {
+        double c_k = coefficient_power * sin_k1;
+        c_k = ((k & 1) != 0) ? -c_k : c_k;
+        coefficient_power *= sw * SLUT_DOUBLE(k + 1);
+        double next = two_cos * sin_k1 - sin_k;
+        sin_k = sin_k1;
+        sin_k1 = next;
+        double term = c_k * power;                        /* c_k(w)/u^{k+1} */
+        if (fabs(term) > last && k > 2) break;            /* asymptotic: stop at the smallest */
+        sum += term;
+        last = fabs(term);
+        power *= inv_u;
+    }
+    return sum / w;
+}
+#else
 SLUT_FN double slut_gs_large_u(double u, double w) {
     double c[SLUT_GS_SERIES_TERMS];
     slut_gs_large_u_coefficients(w, c);
@@ -224,6 +248,7 @@ SLUT_FN double slut_gs_large_u(double u, double w) {
     }
     return sum / w;
 }
+#endif /* SLUT_SHADER */
 
 #ifndef SLUT_SHADER /* the generator's */
 /* The same series at all SLUT_GS_SERIES_TERMS = 12 terms for every u ≥ slut_gs_series_u_min(w): Watson's
@@ -458,6 +483,21 @@ SLUT_FN slut_airlight_geometry slut_airlight_setup(double sigma_s, double sigma_
  * (λh)^{2n} (n!)⁴/((2n + 1)((2n)!)³) ≤ 7e-14 at n = 8: ~1e-13 relative (≤ 1e-11 against
  * the Boost reference in tests/runtime/test_airlight_table, EightPointThetaRuleMatchesDirectQuadrature),
  * far below any table's error (the table radiance's tolerance there is 1e-3). */
+#ifdef SLUT_SHADER
+/* The shaders' form of one θ-panel's Gauss sum (below): the same node, weight, integrand and
+ * order of additions, written out per node with constant array indices. SwiftShader
+ * evidently keeps a constant array read with a variable index (and a local array) in per-lane
+ * memory: the three array forms of the pixel's path cost 1.15–1.4× its frame there, none on
+ * llvmpipe (bench/README.md, "SwiftShader"). With constant indices the nodes and weights are
+ * constants. */
+SLUT_FN double slut_airlight_theta_node_pair(double c, double st, double ct, double sd, double cd, double half_len,
+                                             double node, double weight, double part) {
+    double t = half_len + (-1.0) * half_len * node;
+    part += weight * exp(-c * (st + t * ct) / (sd - t * cd)) / (1.0 + t * t);
+    t = half_len + 1.0 * half_len * node;
+    return part + weight * exp(-c * (st + t * ct) / (sd - t * cd)) / (1.0 + t * t);
+}
+#endif
 SLUT_FN double slut_airlight_theta_integral_rule(double c, double w2, double dv, int gl16) {
     if (dv <= 0.0) return 0.0;
     if (c <= 0.0) return dv;
@@ -479,6 +519,15 @@ SLUT_FN double slut_airlight_theta_integral_rule(double c, double w2, double dv,
          * as h ≤ π/8 keeps tan on the panel within 5 % of linear and the poles of 1/(1 + t²)
          * at ±i ≥ 2.4 panel lengths away: Bernstein ρ ≥ 9.8). */
         double half_len = 0.5 * tan(h), part = 0.0;
+#ifdef SLUT_SHADER
+        if (gl16 == 0) {
+            part = slut_airlight_theta_node_pair(c, st, ct, sd, cd, half_len, slut_gl8_x[0], slut_gl8_w[0], part);
+            part = slut_airlight_theta_node_pair(c, st, ct, sd, cd, half_len, slut_gl8_x[1], slut_gl8_w[1], part);
+            part = slut_airlight_theta_node_pair(c, st, ct, sd, cd, half_len, slut_gl8_x[2], slut_gl8_w[2], part);
+            part = slut_airlight_theta_node_pair(c, st, ct, sd, cd, half_len, slut_gl8_x[3], slut_gl8_w[3], part);
+            half_points = 0; /* done: the loop below is the 16-point rule's */
+        }
+#endif
         for (int k = 0; k < half_points; ++k) {
             double node = (gl16 != 0) ? slut_gl16_x[k] : slut_gl8_x[k];
             double weight = (gl16 != 0) ? slut_gl16_w[k] : slut_gl8_w[k];
@@ -516,6 +565,26 @@ SLUT_CONST_ARRAY3(slut_gl6_w, 0.467913934572691047390, 0.360761573048138607570, 
 SLUT_FN int slut_airlight_theta_fits_one_panel(slut_airlight_geometry g) {
     return (g.kind == 0 && g.tan_dv <= 0.25 * g.w2 && g.c * g.tan_dv <= 4.0 * g.cos_half) ? 1 : 0;
 }
+#ifdef SLUT_SHADER
+/* The shaders' form of slut_airlight_theta_integral_one_panel below: the same nodes, weights
+ * and order of additions, one node at a time with constant array indices (no local arrays,
+ * no variable index: see slut_airlight_theta_node_pair). */
+SLUT_FN double slut_airlight_theta_one_panel_node(double c, double sin_w2, double cos_w2, double half_len, double x,
+                                                  double weight, double sum) {
+    double t = half_len * (1.0 + x);
+    return sum + (weight / (1.0 + t * t)) * exp(-c * t / (sin_w2 - t * cos_w2));
+}
+SLUT_FN double slut_airlight_theta_integral_one_panel(double c, double sin_w2, double cos_w2, double tan_dv) {
+    double half_len = 0.5 * tan_dv, sum = 0.0;
+    sum = slut_airlight_theta_one_panel_node(c, sin_w2, cos_w2, half_len, -slut_gl6_x[0], slut_gl6_w[0], sum);
+    sum = slut_airlight_theta_one_panel_node(c, sin_w2, cos_w2, half_len, -slut_gl6_x[1], slut_gl6_w[1], sum);
+    sum = slut_airlight_theta_one_panel_node(c, sin_w2, cos_w2, half_len, -slut_gl6_x[2], slut_gl6_w[2], sum);
+    sum = slut_airlight_theta_one_panel_node(c, sin_w2, cos_w2, half_len, slut_gl6_x[0], slut_gl6_w[0], sum);
+    sum = slut_airlight_theta_one_panel_node(c, sin_w2, cos_w2, half_len, slut_gl6_x[1], slut_gl6_w[1], sum);
+    sum = slut_airlight_theta_one_panel_node(c, sin_w2, cos_w2, half_len, slut_gl6_x[2], slut_gl6_w[2], sum);
+    return half_len * sum;
+}
+#else
 SLUT_FN double slut_airlight_theta_integral_one_panel(double c, double sin_w2, double cos_w2, double tan_dv) {
     /* The exponents first, then the exps, then the sum: the six divides and the six exp
      * calls are independent and overlap (a loop of exp-then-divide serialises on them). */
@@ -532,6 +601,7 @@ SLUT_FN double slut_airlight_theta_integral_one_panel(double c, double sin_w2, d
     for (int k = 0; k < 6; ++k) sum += weight[k] * exponent[k];
     return half_len * sum;
 }
+#endif /* SLUT_SHADER */
 
 /* ------------------------------------------- the closed forms engines use instead */
 

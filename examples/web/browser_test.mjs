@@ -75,6 +75,9 @@ const cpp = decodePng(readFileSync(join(work, 'table.png')));
 const t0 = Date.now();
 // The page's waits guard against a hang, not a speed: SwiftShader renders the fixed view in
 // 75–175 s on a quiet 2-core machine (`ctest -R WebDemoChromium -V` prints the phases), and CTest's TIMEOUT (900 s) bounds it all.
+// Nearly all of it is SwiftShader compiling the fragment shader (one frame takes ~1 s once
+// compiled), and the near-light snippet's share of that compile doubled it:
+// examples/web/bench_airlight.mjs and bench/README.md ("SwiftShader").
 const kPageWait_ms = 600000;
 const phase = (what) => console.log(`[${((Date.now() - t0) / 1000).toFixed(1)} s] ${what}`);
 
@@ -83,6 +86,10 @@ const server = await startServer({ tables, shaders: opt('--shaders') });
 const browser = await puppeteer.launch({
 	executablePath: chromium, headless: true,
 	args: ['--headless=new', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox', '--disable-gpu-sandbox'],
+	// The page's first frame blocks its renderer until SwiftShader has compiled the shader, and
+	// every DevTools call with it: puppeteer's default limit per call (180 s) would cut the
+	// page wait short.
+	protocolTimeout: kPageWait_ms + 60000,
 });
 let frame;
 try {

@@ -1,0 +1,351 @@
+// Per-pixel cost of the airlight snippet on Chromium's SwiftShader (WebGL2), A/B:
+//   node examples/web/bench_airlight.mjs TABLE.slut SNIPPET.essl [SNIPPET2.essl ...]
+//        [--chromium PATH] [--rounds N] [--frames N] [--lamps 1..6] [--near NEAR_E3.slut]
+// renders the web demo's fixed view (fog.mjs: 480 x 270, the street, its six lamps; the rays
+// end on the ground, the far wall or the slab) with the airlight of its lamps only (no near
+// light), once per given GLSL ES snippet (scatterlut_airlight.essl, e.g. one assembled
+// before a change), once with the closed form engines use (Macklin 2010, × e^{−σ_t D}) and
+// once with Sun et al. 2005's two-fetch form on a plain 64 x 64 F(u, v) table (u in [0, 10],
+// v in [0, π/2], linear axes, bilinear, clamped; F by composite Simpson here), as
+// bench/bench_gpu_pixel.cpp writes them for llvmpipe, into an R32F target. Rounds A B C … with the order rotated each round; per frame
+// drawArrays + a one-pixel readPixels (which waits for the frame), wall clock; per round each
+// method's median frame, and its ratio to the first snippet in the same round. Prints per
+// method: compile + link ms, the first frame (SwiftShader builds the pipeline there), the
+// median frame, ns per pixel and lamp, the per-round ratios, and the largest relative
+// difference of its frame from the first snippet's (pixels with a finite, nonzero value).
+// TABLE.slut: the default airlight table (`scatterlut generate --out DIR`, airlight_F.slut).
+// With --near NEAR_E3.slut (near_light_E3.slut of the same run) a snippet argument may be
+// AIR.essl+NEAR.essl: that method also renders the near light through the slab, as fog.mjs
+// does (the whole fixed view of the web demo).
+// Needs the npm modules (npm ci in examples/web) and Chromium; exits 77 without them.
+import { existsSync, readFileSync } from 'node:fs';
+import { basename } from 'node:path';
+import { parseSlut } from '../../tests/js/slut.mjs';
+
+const args = process.argv.slice(2);
+const valued = ['--chromium', '--rounds', '--frames', '--lamps', '--near'];
+const opt = (name, fallback) => { const i = args.indexOf(name); return i >= 0 ? args[i + 1] : fallback; };
+const positional = args.filter((a, i) => !a.startsWith('--') && !(i > 0 && valued.includes(args[i - 1])));
+const usage = 'usage: node bench_airlight.mjs TABLE.slut SNIPPET.essl [SNIPPET2.essl ...] [--chromium PATH] ' +
+	'[--rounds 1..100] [--frames 1..100] [--lamps 1..6] [--near NEAR_E3.slut]';
+function intOption(name, fallback, lo, hi) {
+	const text = opt(name, String(fallback)), v = Number(text);
+	if (!Number.isInteger(v) || v < lo || v > hi) {
+		console.error(`bench_airlight: ${name} ${text}: expected an integer in [${lo}, ${hi}]\n${usage}`);
+		process.exit(2);
+	}
+	return v;
+}
+if (positional.length < 2) { console.error(usage); process.exit(2); }
+const rounds = intOption('--rounds', 5, 1, 100), frames = intOption('--frames', 3, 1, 100);
+const lamps = intOption('--lamps', 6, 1, 6);
+const [tablePath, ...snippetPaths] = positional;
+const nearPath = opt('--near');
+for (const p of [...positional.flatMap((a) => a.split('+')), ...(nearPath ? [nearPath] : [])])
+	if (!existsSync(p)) { console.error(`bench_airlight: ${p}: no such file`); process.exit(2); }
+const chromium = opt('--chromium') ?? ['/usr/bin/chromium', '/usr/bin/chromium-browser'].find((p) => existsSync(p));
+if (!chromium) { console.log('skipped: chromium not found'); process.exit(77); }
+let puppeteer;
+try {
+	puppeteer = (await import('puppeteer-core')).default;
+} catch (e) {
+	console.log(`skipped: npm modules missing (npm ci in examples/web): ${e.message}`);
+	process.exit(77);
+}
+
+const table = parseSlut(readFileSync(tablePath), tablePath);
+if (table.kind !== 'airlight_F' || table.axes[0].warpName !== 'log1p' || table.axes[1].warpName !== 'asinh_cot') {
+	console.error(`bench_airlight: ${tablePath}: expected the default airlight_F table (u log1p, w asinh_cot), got ${table.kind}`);
+	process.exit(2);
+}
+const [au, aw] = table.axes;
+const near = nearPath ? parseSlut(readFileSync(nearPath), nearPath) : undefined;
+if (near && near.kind !== 'near_light_E3') {
+	console.error(`bench_airlight: ${nearPath}: expected a near_light_E3 table, got ${near.kind}`);
+	process.exit(2);
+}
+const methods = snippetPaths.map((p, k) => {
+	const [air, nl] = p.split('+');
+	if (nl && !near) { console.error(`bench_airlight: ${p}: a near-light snippet needs --near NEAR_E3.slut`); process.exit(2); }
+	return { name: `${String.fromCharCode(65 + k)}: ${p}`, snippet: readFileSync(air, 'utf8'),
+		nearSnippet: nl ? readFileSync(nl, 'utf8') : '' };
+});
+methods.push({ name: 'closed form × e^{−σ_t D} (Macklin 2010)', snippet: '', builtin: 'closed' });
+methods.push({ name: 'Sun et al. 2005, 64² F table, two fetches', snippet: '', builtin: 'sun' });
+
+// Sun et al.'s F(u, v) = ∫_0^v e^{−u tan ξ} dξ on the Rain sample's plain grid: composite
+// Simpson, 4096 intervals (the integrand is smooth up to ξ = π/2, where it vanishes for u > 0).
+const kFCount = 64, kFUMax = 10.0;
+const fTable = new Float32Array(kFCount * kFCount);
+for (let j = 0; j < kFCount; ++j) {
+	for (let i = 0; i < kFCount; ++i) {
+		const u = (kFUMax * i) / (kFCount - 1), v = (0.5 * Math.PI * j) / (kFCount - 1), n = 4096, h = v / n;
+		const f = (x) => (x >= 0.5 * Math.PI ? (u > 0 ? 0 : 1) : Math.exp(-u * Math.tan(x)));
+		let sum = f(0) + f(v);
+		for (let k = 1; k < n; ++k) sum += (k & 1 ? 4 : 2) * f(k * h);
+		fTable[j * kFCount + i] = (sum * h) / 3;
+	}
+}
+
+// The page: everything inside one evaluate (no server; WebGL2 on about:blank).
+async function pageBench({ methods, values, air, nearTable, fTable, fCount, fUMax, rounds, frames, lamps }) {
+	const W = 480, H = 270;
+	const canvas = document.createElement('canvas');
+	canvas.width = W; canvas.height = H;
+	const gl = canvas.getContext('webgl2', { antialias: false });
+	if (!gl) throw new Error('no WebGL2');
+	if (!gl.getExtension('EXT_color_buffer_float')) throw new Error('no EXT_color_buffer_float');
+	const renderer = gl.getParameter(gl.RENDERER);
+	const tex = gl.createTexture();
+	gl.activeTexture(gl.TEXTURE0);
+	gl.bindTexture(gl.TEXTURE_2D, tex);
+	gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+	gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+	gl.texImage2D(gl.TEXTURE_2D, 0, gl.R32F, air.u.count, air.w.count, 0, gl.RED, gl.FLOAT, new Float32Array(values));
+	if (nearTable) {
+		const [T, g, r] = nearTable.axes;
+		const t3 = gl.createTexture();
+		gl.activeTexture(gl.TEXTURE1);
+		gl.bindTexture(gl.TEXTURE_3D, t3);
+		gl.texParameteri(gl.TEXTURE_3D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+		gl.texParameteri(gl.TEXTURE_3D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+		gl.texImage3D(gl.TEXTURE_3D, 0, gl.R32F, T.count, g.count, r.count, 0, gl.RED, gl.FLOAT,
+			new Float32Array(nearTable.values));
+		gl.activeTexture(gl.TEXTURE0);
+	}
+	const haveFloatLinear = gl.getExtension('OES_texture_float_linear') !== null;
+	const fTex = gl.createTexture();
+	gl.activeTexture(gl.TEXTURE2);
+	gl.bindTexture(gl.TEXTURE_2D, fTex);
+	gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.LINEAR);
+	gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
+	gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
+	gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+	gl.texImage2D(gl.TEXTURE_2D, 0, haveFloatLinear ? gl.R32F : gl.R16F, fCount, fCount, 0, gl.RED, gl.FLOAT,
+		new Float32Array(fTable));
+	gl.activeTexture(gl.TEXTURE0);
+	const target = gl.createTexture();
+	gl.bindTexture(gl.TEXTURE_2D, target);
+	gl.texStorage2D(gl.TEXTURE_2D, 1, gl.R32F, W, H);
+	gl.bindTexture(gl.TEXTURE_2D, tex);
+	const fbo = gl.createFramebuffer();
+	gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
+	gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, target, 0);
+	gl.viewport(0, 0, W, H);
+
+	// fog.mjs's fixed view and lamps.
+	const lights = [[-3.5, 5.0, -12.0, 300], [3.8, 5.0, -26.0, 300], [-3.8, 5.0, -45.0, 300],
+		[3.8, 5.0, -70.0, 300], [2.0, 1.2, -8.6, 40], [-2.0, 4.0, 3.0, 200]];
+	const eye = [0, 1.7, 0], tgt = [0, 2.4, -30];
+	const sub = (a, b) => a.map((x, i) => x - b[i]);
+	const norm = (a) => { const n = Math.hypot(...a); return a.map((x) => x / n); };
+	const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+	const fwd = norm(sub(tgt, eye)), right = norm(cross(fwd, [0, 1, 0])), up = cross(right, fwd);
+
+	const vs = '#version 300 es\nvoid main() { vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));' +
+		' gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0); }\n';
+	const closed = `
+float closed_form_attenuated(float ss, float sa, float i0, float dist, float sg, float cg, float len) {
+    if (!(ss > 0.0) || !(i0 > 0.0) || !(len > 0.0)) return 0.0;
+    float h = dist * max(sg, 0.0);
+    float den = dist * (dist - len * cg);
+    float angle_over_h;
+    if (den > 0.0) {
+        float x = len * h / den;
+        angle_over_h = ((x == 0.0) ? 1.0 : atan(x) / x) * (len / den);
+    } else {
+        if (!(h > 0.0)) return uintBitsToFloat(0x7F800000u);
+        angle_over_h = (den == 0.0) ? 1.5707963 / h : (3.14159265 - atan(len * h / -den)) / h;
+    }
+    return ss * 0.0795774715 * i0 * angle_over_h * exp(-(ss + sa) * dist);
+}
+float closed_points(vec3 eye, vec3 d, vec3 light, float s, float ss, float sa, float i0) {
+    vec3 to_light = light - eye;
+    float dist = length(to_light);
+    float sin_part = length(cross(d, to_light)), cos_part = dot(d, to_light);
+    float n = sqrt(sin_part * sin_part + cos_part * cos_part);
+    return closed_form_attenuated(ss, sa, i0, dist, sin_part / n, cos_part / n, s);
+}
+`;
+	const slabLoop = `
+    if (slab) {
+        vec3 p = eye + s * d;
+        for (int k = 0; k < ${lamps}; ++k) {
+            vec3 rel = lights[k].xyz - p;
+            float att = exp(-(fog_sigma.x + fog_sigma.y) * (length(rel) + s));
+            L += slut_near_light_radiance(near_table, slut_near_light_table_e3(
+                     slut_axis_make(near_T.x, near_T.y, near_T.z, near_warps.x, int(near_T.w)),
+                     slut_axis_make(near_g.x, near_g.y, near_g.z, near_warps.y, int(near_g.w)),
+                     slut_axis_make(near_r.x, near_r.y, near_r.z, near_warps.z, int(near_r.w))),
+                     5.0, 0.2, lights[k].w, vec3(0.0, 0.0, 1.0), -d, rel, slut_inf(), 1.0, false) * att;
+        }
+    }`;
+	const sun = `
+uniform sampler2D f_table;
+uniform float f_u_max;
+float sun_F(float u, float v) {
+    vec2 unit = clamp(vec2(u / f_u_max, v / 1.5707963), 0.0, 1.0);
+    vec2 size = vec2(textureSize(f_table, 0));
+    return textureLod(f_table, (unit * (size - 1.0) + 0.5) / size, 0.0).r;
+}
+float sun2005(float ss, float sa, float i0, float dist, float sg, float cg, float len) {
+    float st = ss + sa;
+    float a1 = st * dist * sg;
+    float a0 = ss * i0 * exp(-st * dist * cg) / (6.2831853 * dist * sg);
+    float v_far = 0.7853982 + 0.5 * atan((len - dist * cg) / (dist * sg));
+    float v_near = 0.5 * atan(sg, cg);
+    return a0 * (sun_F(a1, v_far) - sun_F(a1, v_near));
+}
+float sun_points(vec3 eye, vec3 d, vec3 light, float s, float ss, float sa, float i0) {
+    vec3 to_light = light - eye;
+    float dist = length(to_light);
+    float sin_part = length(cross(d, to_light)), cos_part = dot(d, to_light);
+    float n = sqrt(sin_part * sin_part + cos_part * cos_part);
+    return sun2005(ss, sa, i0, dist, sin_part / n, cos_part / n, min(s, 1e30));
+}
+`;
+	const main = (call, withNear) => `
+uniform sampler2D airlight_table;${withNear ? '\nuniform sampler3D near_table;\nuniform vec4 near_T, near_g, near_r;\nuniform ivec3 near_warps;' : ''}
+uniform vec4 air_u, air_w;
+uniform vec3 eye, fwd, right, up;
+uniform float tan_half_fov, aspect;
+uniform vec2 fog_sigma;
+uniform vec4 lights[6];
+out float radiance;
+void main() {
+    float i = gl_FragCoord.x - 0.5, j = ${H.toFixed(1)} - gl_FragCoord.y - 0.5;
+    float px = (2.0 * (i + 0.5) / ${W.toFixed(1)} - 1.0) * tan_half_fov * aspect;
+    float py = (1.0 - 2.0 * (j + 0.5) / ${H.toFixed(1)}) * tan_half_fov;
+    vec3 d = normalize(fwd + px * right + py * up);
+    float s = uintBitsToFloat(0x7F800000u);
+    bool slab = false;
+    if (d.y < 0.0) s = min(s, -eye.y / d.y);
+    if (d.z < 0.0) {
+        float t = (-90.0 - eye.z) / d.z;
+        vec3 p = eye + t * d;
+        if (t < s && p.y <= 14.0) s = t;
+        t = (-9.0 - eye.z) / d.z;
+        p = eye + t * d;
+        if (t < s && p.x >= 1.2 && p.x <= 3.2 && p.y >= 0.0 && p.y <= 2.0) { s = t; slab = true; }
+    }
+    float L = 0.0;
+    for (int k = 0; k < ${lamps}; ++k) L += ${call};${withNear ? slabLoop : ''}
+    radiance = L;
+}
+`;
+	const snippetCall = 'slut_airlight_radiance_points(airlight_table, slut_airlight_table(air_u.y, air_u.z, int(air_u.w), ' +
+		'air_w.x, int(air_w.w)), eye, d, lights[k].xyz, s, fog_sigma.x, fog_sigma.y, lights[k].w)';
+	const closedCall = 'closed_points(eye, d, lights[k].xyz, s, fog_sigma.x, fog_sigma.y, lights[k].w)';
+	const sunCall = 'sun_points(eye, d, lights[k].xyz, s, fog_sigma.x, fog_sigma.y, lights[k].w)';
+	const one = new Float32Array(4);
+	const finish = () => gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.FLOAT, one);
+	const results = [];
+	for (const m of methods) {
+		const t0 = performance.now();
+		const shader = (type, text) => {
+			const s = gl.createShader(type);
+			gl.shaderSource(s, text);
+			gl.compileShader(s);
+			if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) throw new Error(`${m.name}: ${gl.getShaderInfoLog(s)}`);
+			return s;
+		};
+		const program = gl.createProgram();
+		gl.attachShader(program, shader(gl.VERTEX_SHADER, vs));
+		gl.attachShader(program, shader(gl.FRAGMENT_SHADER, '#version 300 es\n' +
+			(m.snippet ? m.snippet + m.nearSnippet + main(snippetCall, m.nearSnippet !== '')
+				: m.builtin === 'closed' ? 'precision highp float;\n' + closed + main(closedCall, false)
+					: 'precision highp float;\n' + sun + main(sunCall, false))));
+		gl.linkProgram(program);
+		if (!gl.getProgramParameter(program, gl.LINK_STATUS)) throw new Error(`${m.name}: ${gl.getProgramInfoLog(program)}`);
+		const t1 = performance.now();
+		gl.useProgram(program);
+		const loc = (n) => gl.getUniformLocation(program, n);
+		gl.uniform1i(loc('airlight_table'), 0);
+		gl.uniform1i(loc('f_table'), 2);
+		gl.uniform1f(loc('f_u_max'), fUMax);
+		gl.uniform4f(loc('air_u'), air.u.min, air.u.max, air.u.scale, air.u.count);
+		gl.uniform4f(loc('air_w'), air.w.min, air.w.max, air.w.scale, air.w.count);
+		gl.uniform3fv(loc('eye'), eye); gl.uniform3fv(loc('fwd'), fwd);
+		gl.uniform3fv(loc('right'), right); gl.uniform3fv(loc('up'), up);
+		gl.uniform1f(loc('tan_half_fov'), Math.tan((50 * Math.PI) / 360));
+		gl.uniform1f(loc('aspect'), W / H);
+		gl.uniform2f(loc('fog_sigma'), 0.04, 0.01);
+		gl.uniform4fv(loc('lights'), lights.flat());
+		if (m.nearSnippet) {
+			const [T, g, r] = nearTable.axes;
+			gl.uniform1i(loc('near_table'), 1);
+			for (const [n, a] of [['near_T', T], ['near_g', g], ['near_r', r]]) gl.uniform4f(loc(n), a.min, a.max, a.scale, a.count);
+			gl.uniform3i(loc('near_warps'), T.warp, g.warp, r.warp);
+		}
+		gl.drawArrays(gl.TRIANGLES, 0, 3);
+		finish();
+		const t2 = performance.now();
+		console.log(`${m.name}: compile + link ${(t1 - t0).toFixed(0)} ms, first frame ${(t2 - t1).toFixed(0)} ms`);
+		const frame = new Float32Array(W * H * 4);
+		gl.readPixels(0, 0, W, H, gl.RGBA, gl.FLOAT, frame);
+		results.push({ name: m.name, program, compile_ms: t1 - t0, first_frame_ms: t2 - t1,
+			frame: Array.from({ length: W * H }, (_, k) => frame[4 * k]), round_ms: [] });
+	}
+	for (let r = 0; r < rounds; ++r) {
+		for (let q = 0; q < results.length; ++q) {
+			const m = results[(q + r) % results.length];
+			gl.useProgram(m.program);
+			const times = [];
+			for (let f = 0; f < frames; ++f) {
+				const t0 = performance.now();
+				gl.drawArrays(gl.TRIANGLES, 0, 3);
+				finish();
+				times.push(performance.now() - t0);
+			}
+			times.sort((a, b) => a - b);
+			m.round_ms.push(times[Math.floor(times.length / 2)]);
+		}
+	}
+	const base = results[0].frame;
+	for (const m of results) {
+		let maxRel = 0;
+		for (let k = 0; k < base.length; ++k) {
+			if (!(Number.isFinite(base[k]) && base[k] > 0 && Number.isFinite(m.frame[k]))) continue;
+			maxRel = Math.max(maxRel, Math.abs(m.frame[k] - base[k]) / base[k]);
+		}
+		m.max_rel_vs_A = maxRel;
+		delete m.frame;
+		delete m.program;
+	}
+	return { renderer, W, H, results, haveFloatLinear };
+}
+
+const browser = await puppeteer.launch({
+	executablePath: chromium, headless: true,
+	args: ['--headless=new', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox', '--disable-gpu-sandbox'],
+	protocolTimeout: 1800000,
+});
+try {
+	const page = await browser.newPage();
+	const start = Date.now();
+	page.on('console', (m) => console.error(`[${((Date.now() - start) / 1000).toFixed(1)} s] ${m.text()}`));
+	await page.goto('about:blank');
+	const out = await page.evaluate(pageBench, {
+		methods, values: Array.from(table.values), rounds, frames, lamps,
+		fTable: Array.from(fTable), fCount: kFCount, fUMax: kFUMax,
+		nearTable: near ? { axes: near.axes, values: Array.from(near.values) } : undefined,
+		air: { u: au, w: aw },
+	});
+	const median = (a) => { const s = [...a].sort((x, y) => x - y); return s[Math.floor(s.length / 2)]; };
+	const pixels = out.W * out.H;
+	console.log(`${out.renderer}; ${out.W} x ${out.H} pixels, ${lamps} lamp(s), ${rounds} rounds x ${frames} frames, ` +
+		`table ${basename(tablePath)} (${au.count} x ${aw.count}); F table ${out.haveFloatLinear ? 'R32F' : 'R16F (no OES_texture_float_linear)'}`);
+	console.log('| method | compile + link, ms | first frame, ms | frame, ms: median [min-max] of rounds | ns per pixel and lamp | / A: median [min-max] of per-round ratios | max rel. diff from A |');
+	console.log('|---|---|---|---|---|---|---|');
+	const a = out.results[0].round_ms;
+	for (const m of out.results) {
+		const ratios = m.round_ms.map((t, r) => t / a[r]);
+		const ms = median(m.round_ms);
+		console.log(`| ${m.name} | ${m.compile_ms.toFixed(0)} | ${m.first_frame_ms.toFixed(0)} | ${ms.toFixed(1)} ` +
+			`[${Math.min(...m.round_ms).toFixed(1)}-${Math.max(...m.round_ms).toFixed(1)}] | ` +
+			`${((ms * 1e6) / (pixels * lamps)).toFixed(0)} | ${median(ratios).toFixed(2)} ` +
+			`[${Math.min(...ratios).toFixed(2)}-${Math.max(...ratios).toFixed(2)}] | ${m.max_rel_vs_A.toExponential(1)} |`);
+	}
+} finally {
+	await browser.close();
+}
