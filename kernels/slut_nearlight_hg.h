@@ -135,6 +135,24 @@ SLUT_FN double slut_hg_nl_E(double T, double g, double r, double S_over_T, doubl
     return sum;
 }
 
+/* The divisor D(T, g) of the anisotropic near-light tables (kernels/nearlight_Eg.cl stores
+ * ln(E_g/D), the runtime multiplies by it). ψ0 = ψ(θ(0)), cos θ(0) = −g, the phase at the entry
+ * point, carries E_g's sharp dependence on g near the phase's peak once the attenuation gathers
+ * at the entry point (E_g → ψ0·E as T grows); for small T, E_g is the mean of ψ over a long
+ * path and smooth in g. θ grows along the ray, so:
+ *  - g_hg ≥ 0 (ψ falls along the ray): E_g ≤ ψ0·E, D = ψ0;
+ *  - g_hg < 0 (ψ rises along the ray towards ψ_max = ψ(π)): E_g ≤ ψ_max·E, D = ψ_max·(ψ0/ψ_min)^w
+ *    with w = 1 − e^{−T} (ψ_max at small T, ψ0 times a constant at large T; ≥ ψ_max).
+ * E_g/D ≤ E: the stored values have the isotropic tables' ranges (ln ≤ 0 thick; ln(·/B) ≤ T slab). */
+SLUT_FN double slut_hg_nl_table_divisor(double phase_g, double T, double g) {
+    g = slut_clamp(g, -1.0, 1.0);
+    double sg2 = (1.0 - fabs(g)) * (1.0 + fabs(g));
+    double psi0 = slut_hg_nl_psi(phase_g, g, 1.0, sg2);
+    if (phase_g >= 0.0) return psi0;
+    double w = -expm1(-fmax(T, 0.0));
+    return slut_hg_psi_max(phase_g) * pow(psi0 / slut_hg_psi_forward(phase_g), w);
+}
+
 /* N_g = E_g·H (+∞ where H diverges: T = 0 with S > 0, or g = −1 with S ≥ T). */
 SLUT_FN double slut_hg_nl_N(double T, double g, double r, double S, double phase_g) {
     double H = slut_nl_H(T, g, S);

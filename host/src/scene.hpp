@@ -35,6 +35,7 @@ struct SceneMedium {
     std::string name;
     double sigma_s_per_m = 0; // scattering coefficient, 1/m
     double sigma_a_per_m = 0; // absorption coefficient, 1/m
+    double phase_g = 0.0;
     bool viewer_inside = false; // true: a volume the viewer is in (fog); false: an object seen from outside
     // Media seen from outside: a thick object (the view ray does not leave it) and/or slabs
     // whose path length inside along the view ray lies in `thickness_m`.
