@@ -6,9 +6,9 @@
  * isotropic tables' ranges (ln ≤ 0 thick, ln ≤ T slab) and one runtime front-end reads both.
  *
  * One work-item per (r node, g node, T node); it marches each S node of its slab axis (S
- * from slut_nl_S_nodes, ascending at every (T, g)). Unlike nearlight_E.cl there are no r
- * lanes and no cumulative S sweep: the phase makes each node its own march (the HG march of
- * slut_hg_nl_E has no lane form). Output layout, axis 0 fastest:
+ * from slut_nl_S_nodes, ascending at every (T, g)) in one cumulative march
+ * (slut_hg_nl_E_sweep). Unlike nearlight_E.cl there are no r lanes (the HG march has no lane
+ * form). Output layout, axis 0 fastest:
  * index = ((iS·n_r + ir)·n_g + ig)·n_T + iT (axes T, g, r, S). A thick table passes S_count = 1
  * and S_min = S_max = +inf. The T, g, r nodes come from the host (slut_axis_node).
  */
@@ -31,12 +31,17 @@ __kernel void nearlight_ln_Eg(__global double *out,
     aS.min = S_min; aS.max = S_max; aS.scale = S_scale; aS.warp = S_warp; aS.count = S_count;
     double T = T_nodes[iT], g = g_nodes[ig], r = r_nodes[ir];
     double ln_divisor = log(slut_hg_nl_table_divisor(phase_g, T, g));
-    double S[SLUT_NLG_MAX_S];
+    double S[SLUT_NLG_MAX_S], S_over_T[SLUT_NLG_MAX_S], E[SLUT_NLG_MAX_S];
     if (S_count == 1) S[0] = S_min;
     else slut_nl_S_nodes(&aS, T, g, 0, S_count, S);
+    for (int iS = 0; iS < S_count; ++iS) S_over_T[iS] = (S[iS] > 1e300) ? SLUT_HUGE_VAL : S[iS] / T;
+    /* A slab's S nodes share one march (slut_hg_nl_E_sweep); a thick node, a zero depth and
+     * g = −1 (the light on the ray) take slut_hg_nl_E's own special cases. */
+    if (S_count > 1 && S_over_T[0] > 0.0 && g > -1.0) slut_hg_nl_E_sweep(T, g, r, S_over_T, S_count, phase_g, refine, E);
+    else
+        for (int iS = 0; iS < S_count; ++iS) E[iS] = slut_hg_nl_E(T, g, r, S_over_T[iS], phase_g, refine);
     for (int iS = 0; iS < S_count; ++iS) {
-        double S_over_T = (S[iS] > 1e300) ? SLUT_HUGE_VAL : S[iS] / T;
-        double ln_E = log(slut_hg_nl_E(T, g, r, S_over_T, phase_g, refine)) - ln_divisor;
+        double ln_E = log(E[iS]) - ln_divisor;
         if (S_count > 1) ln_E -= log(slut_nl_E_base(T, r, S[iS]));
         out[(((size_t)iS * r_count + (size_t)ir) * g_count + ig) * T_count + iT] = ln_E;
     }

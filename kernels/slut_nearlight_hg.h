@@ -135,6 +135,89 @@ SLUT_FN double slut_hg_nl_E(double T, double g, double r, double S_over_T, doubl
     return sum;
 }
 
+/* E_g at n ascending slab depths in one march (the 4-D table's S nodes at one (T, g, r)):
+ * S_over_T[k] = S_k/T, 0 < S_0 ≤ … ≤ S_{n−1} (the last may be > 1e300: thick). The panels of
+ * slut_hg_nl_E, each also cut at every S_k; the raw sum N_g·T is recorded at each S_k and
+ * divided by H there. The tail rule is slut_hg_nl_E's to the last depth: once it stops the
+ * march, the depths not reached take the sum at the stop (their remainder is a part of the
+ * bounded one). Not for g = −1 with S ≥ T (the caller uses slut_hg_nl_E there). */
+SLUT_FN void slut_hg_nl_E_sweep(double T, double g, double r, const double *S_over_T, int n, double phase_g,
+                                double refine, double *E_out) {
+    g = slut_clamp(g, -1.0, 1.0);
+    double sg2 = (1.0 - fabs(g)) * (1.0 + fabs(g)), sg = sqrt(sg2);
+    double tau_end = (S_over_T[n - 1] > 1e300) ? SLUT_HUGE_VAL : S_over_T[n - 1];
+    int finite_S = !(tau_end > 1e300);
+    int r_inf = !(r <= 1e300);
+    double A = 1.0 + (SLUT_HG_NL_ELLIPSE - 1.0) * refine;
+    double efolds = SLUT_HG_NL_EFOLDS / refine;
+    double tail_eps = SLUT_HG_NL_TAIL_EPS / pow(refine, 15.0);
+    double psi_back = slut_hg_psi_backward(phase_g);
+    double tau = 0.0, dl = g, d_end = tau_end + g, sum = 0.0;
+    int carry_d = 0, next = 0;
+    for (int panel = 0; panel < SLUT_HG_NL_MAX_PANELS && next < n; ++panel) {
+        if (!carry_d && g < 0.0 && tau >= -0.5 * g) carry_d = 1;
+        double eta2 = dl * dl + sg2, eta = sqrt(eta2);
+        if (panel > 0) {
+            double q0 = r_inf ? 0.0 : ((r > 0.0) ? tau / (tau + r) : 1.0);
+            double attenuation = exp(-T * (tau + eta * q0));
+            double psi_rest = (phase_g >= 0.0) ? slut_hg_nl_psi(phase_g, dl, eta, sg2) : psi_back;
+            double len = finite_S ? (carry_d ? d_end - dl : tau_end - tau) : SLUT_HUGE_VAL;
+            double rest = slut_nl_inv_square_integral(len, eta2, dl, sg);
+            if (dl >= 0.0 && T > 0.0) rest = fmin(rest, 1.0 / (T * eta2));
+            if (attenuation * psi_rest * rest <= tail_eps * sum) break;
+        }
+        double h = 2.0 * (A * eta + dl) / (A * A - 1.0);
+        double k_rate = (r > 0.0 && !r_inf) ? r / ((tau + r) * (tau + r)) : 0.0;
+        if (r > 0.0 && !r_inf && T * r * fmax(eta / (tau + r), 1.0) > 1e-17) h = fmin(h, 2.0 * (tau + r) / (A - 1.0));
+        if (T > 0.0) {
+            double L = efolds / T, B = 2.0 + 2.0 * eta * k_rate;
+            h = fmin(h, (2.0 * L / B) / (1.0 + sqrt(1.0 + (8.0 * L / B) * (k_rate / B))));
+        }
+        if (!(h > 0.0)) break;
+        int at_node = 0;
+        if (S_over_T[next] <= 1e300) {
+            double remaining = carry_d ? (S_over_T[next] + g) - dl : S_over_T[next] - tau;
+            if (h >= remaining) {
+                h = fmax(remaining, 0.0);
+                at_node = 1;
+            }
+        }
+        double half_len = 0.5 * h, part = 0.0;
+        for (int k = 0; k < 16; ++k) {
+            double x = (k < 8) ? -slut_gl16_x[k] : slut_gl16_x[k - 8];
+            double off = half_len + half_len * x;
+            double tn = carry_d ? (dl + off) - g : tau + off;
+            double dn = carry_d ? dl + off : tn + g;
+            double en2 = dn * dn + sg2, en = sqrt(en2);
+            double q = r_inf ? 0.0 : ((r > 0.0) ? tn / (tn + r) : 1.0);
+            part += slut_gl16_w[(k < 8) ? k : k - 8] * slut_hg_nl_psi(phase_g, dn, en, sg2) *
+                    exp(-T * (tn + en * q)) / en2;
+        }
+        sum += half_len * part;
+        if (at_node) { /* land exactly on the node */
+            double S_node = S_over_T[next];
+            if (carry_d) {
+                dl = S_node + g;
+                tau = dl - g;
+            } else {
+                tau = S_node;
+                dl = tau + g;
+            }
+            while (next < n && S_over_T[next] <= S_node) {
+                E_out[next] = sum / slut_nl_H_scaled(g, S_over_T[next]);
+                ++next;
+            }
+        } else if (carry_d) {
+            dl += h;
+            tau = dl - g;
+        } else {
+            tau += h;
+            dl = tau + g;
+        }
+    }
+    for (; next < n; ++next) E_out[next] = sum / slut_nl_H_scaled(g, (S_over_T[next] > 1e300) ? SLUT_HUGE_VAL : S_over_T[next]);
+}
+
 /* The divisor D(T, g) of the anisotropic near-light tables (kernels/nearlight_Eg.cl stores
  * ln(E_g/D), the runtime multiplies by it). ψ0 = ψ(θ(0)), cos θ(0) = −g, the phase at the entry
  * point, carries E_g's sharp dependence on g near the phase's peak once the attenuation gathers
