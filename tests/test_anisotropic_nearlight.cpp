@@ -15,6 +15,8 @@
 
 #include "generate_nearlight.hpp"
 #include "opencl_device.hpp"
+#include "plan.hpp"
+#include "scene.hpp"
 #include "reference_quadrature.hpp"
 #include "scatterlut/anisotropic.hpp"
 #include "scatterlut/io.hpp"
@@ -336,4 +338,62 @@ TEST(AnisotropicNearLightClosedForms, Limits) {
     q.light_rel_m[0] = 1.0;
     EXPECT_EQ(scatterlut::near_light_radiance_thin(q, 0.0), scatterlut::near_light_radiance_thin(q));
     EXPECT_EQ(scatterlut::near_light_radiance_distant(q, 0.0), scatterlut::near_light_radiance_distant(q));
+}
+
+// The planner: isotropic media keep the isotropic kinds; a medium with phase_g gets the
+// anisotropic kind with its g (and g_max for a backward phase); a second distinct g is noted.
+TEST(AnisotropicNearLightPlan, DemandFollowsPhaseG) {
+    const char *text = R"(name = "two"
+[[medium]]
+name = "wax"
+sigma_s_per_m = 90
+sigma_a_per_m = 10
+viewer_inside = false
+thick = true
+[[medium]]
+name = "fog"
+sigma_s_per_m = 40
+sigma_a_per_m = 10
+viewer_inside = false
+thick = true
+[[medium]]
+name = "smoke"
+sigma_s_per_m = 30
+sigma_a_per_m = 10
+viewer_inside = false
+thick = true
+[[light]]
+name = "lamp"
+type = "point"
+intensity_W_per_sr = 1
+distance_m = [0.01, 0.1]
+)";
+    scatterlut::Scene scene = scatterlut::parse_scene(text, "two.toml");
+    {
+        const scatterlut::ScenePlan p = scatterlut::derive_plan(scene, scatterlut::Storage::F32);
+        ASSERT_EQ(p.tables.size(), 1u);
+        EXPECT_STREQ(p.tables[0].name(), "near_light_E3");
+    }
+    scene.media[1].phase_g = -0.9; // fog
+    scene.media[2].phase_g = 0.85; // smoke: a second g
+    const scatterlut::ScenePlan p = scatterlut::derive_plan(scene, scatterlut::Storage::F32);
+    ASSERT_EQ(p.tables.size(), 2u);
+    EXPECT_STREQ(p.tables[0].name(), "near_light_E3");
+    ASSERT_EQ(p.tables[0].requested_by.size(), 1u);
+    EXPECT_EQ(p.tables[0].requested_by[0].medium, "wax");
+    EXPECT_EQ(p.tables[0].plan_as<NearLightPlan>().phase_g, 0.0);
+    const scatterlut::PlannedTable &hg = p.tables[1];
+    EXPECT_STREQ(hg.name(), scatterlut::kKindNearLightE3Hg);
+    ASSERT_EQ(hg.requested_by.size(), 1u);
+    EXPECT_EQ(hg.requested_by[0].medium, "fog");
+    EXPECT_EQ(hg.plan_as<NearLightPlan>().phase_g, -0.9);
+    EXPECT_EQ(hg.plan_as<NearLightPlan>().g_max, 0.85);
+    // T = σ_t·l of the fog alone: 50·[0.01, 0.1].
+    EXPECT_DOUBLE_EQ(hg.plan_as<NearLightPlan>().T_min, 0.5);
+    bool noted = false;
+    for (const std::string &n : hg.domain_notes) noted = noted || n.find("'smoke'") != std::string::npos;
+    EXPECT_TRUE(noted);
+    const Table layout = scatterlut::make_nearlight_table_layout(hg.plan_as<NearLightPlan>());
+    EXPECT_EQ(layout.extra.at("phase.g"), "-0.90000000000000002");
+    EXPECT_EQ(scatterlut::near_light_hg_file_stem(false, 0.85), "near_light_E3_g0.85");
 }
