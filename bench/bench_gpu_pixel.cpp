@@ -425,9 +425,8 @@ int main(int argc, char **argv) {
         q.gamma_rad = std::atan2(static_cast<double>(g[4]), static_cast<double>(g[5]));
         q.length_m = g[6];
         exact[k] = scatterlut::airlight_radiance_exact(q);
-        slut_airlight_geometry geometry;
-        slut_airlight_setup(g[0], g[1], g[2], g[3], g[4], g[5], g[6], &geometry);
-        if (geometry.kind == 0 && slut_airlight_theta_fits_one_panel(&geometry)) {
+        const slut_airlight_geometry geometry = slut_airlight_setup(g[0], g[1], g[2], g[3], g[4], g[5], g[6]);
+        if (geometry.kind == 0 && slut_airlight_theta_fits_one_panel(geometry)) {
             ++one_panel;
         } else if (geometry.kind == 0) { // two table samples; the θ-integral where they cancel
             const double gs2 = airlight.scaled_tail(geometry.u, geometry.w2, geometry.a2);

@@ -30,6 +30,7 @@
 #include "airlight_reference.hpp"
 #include "baselines.hpp"
 #include "generate_airlight.hpp"
+#include "generate_airlight_hg.hpp"
 #include "generate_nearlight.hpp"
 #include "measure_util.hpp"
 #include "opencl_device.hpp"
@@ -168,6 +169,55 @@ void BM_AirlightGeneration(benchmark::State &state) {
     state.counters["boost_evals_per_cell"] = static_cast<double>(evals) / static_cast<double>(picks.size());
 }
 BENCHMARK(BM_AirlightGeneration)->Arg(257)->Arg(1025)->Iterations(7)->Unit(benchmark::kMillisecond);
+
+// One round: the anisotropic airlight table (g = state.range(1)/100, kernels/airlight_Fg.cl)
+// and the isotropic one (the sweep of kernels/airlight_F.cl) of the same N×N axes on the
+// device, back to back (order alternating between rounds). Counters: hg_over_iso (median and
+// range of the per-round time ratios; the acceptance asks ≤ 2), both times, and the HG
+// table's accuracy at 400 nodes against the finer panel rule (refine = 3).
+void BM_AirlightHgGeneration(benchmark::State &state) {
+    const int n = static_cast<int>(state.range(0));
+    scatterlut::AirlightPlan iso;
+    iso.n_u = iso.n_w = n;
+    scatterlut::AirlightHgPlan hg;
+    hg.n_u = hg.n_w = n;
+    hg.phase_g = static_cast<double>(state.range(1)) / 100.0;
+    const scatterlut::Table iso_layout = scatterlut::make_airlight_table_layout(iso);
+    scatterlut::Table hg_layout = scatterlut::make_airlight_hg_table_layout(hg);
+    scatterlut::integrate_airlight_ln_gs(device(), iso_layout); // warm-up: JIT
+    hg_layout.values = scatterlut::integrate_airlight_hg_ln_gs(device(), hg_layout, hg.integration_tolerance);
+    std::vector<double> iso_s, hg_s, ratio;
+    int round = 0;
+    for (auto _ : state) {
+        double t_iso = 0, t_hg = 0;
+        for (int k = 0; k < 2; ++k) {
+            const bool hg_now = (k == 0) == (round % 2 == 0);
+            const auto t0 = Clock::now();
+            if (hg_now) benchmark::DoNotOptimize(scatterlut::integrate_airlight_hg_ln_gs(device(), hg_layout, hg.integration_tolerance));
+            else benchmark::DoNotOptimize(scatterlut::integrate_airlight_ln_gs(device(), iso_layout));
+            (hg_now ? t_hg : t_iso) = seconds_since(t0);
+            settle(state);
+        }
+        iso_s.push_back(t_iso);
+        hg_s.push_back(t_hg);
+        ratio.push_back(t_hg / t_iso);
+        ++round;
+    }
+    state.counters["hg_over_iso"] = median(ratio);
+    state.counters["hg_over_iso_min"] = *std::min_element(ratio.begin(), ratio.end());
+    state.counters["hg_over_iso_max"] = *std::max_element(ratio.begin(), ratio.end());
+    state.counters["hg_ms"] = 1e3 * median(hg_s);
+    state.counters["iso_ms"] = 1e3 * median(iso_s);
+    state.counters["hg_max_rel"] = scatterlut::measure_airlight_hg_integration(
+        hg_layout, scatterlut::airlight_measurement_nodes(hg_layout, 400, 1),
+        scatterlut::IntegrationReference::FinerPanelRule);
+}
+BENCHMARK(BM_AirlightHgGeneration)
+    ->Args({257, 85})
+    ->Args({257, -50})
+    ->Args({513, 85})
+    ->Iterations(5)
+    ->Unit(benchmark::kMillisecond);
 
 // ------------------------------------------------------------------ near-light generation
 
@@ -360,10 +410,10 @@ std::vector<scatterlut::AirlightQuery> airlight_bench_queries(int which) {
         q.gamma_rad = 1e-3 + (M_PI - 2e-3) * unit(rng);
         q.length_m = q.distance_m * std::pow(10.0, -2.0 + 3.0 * unit(rng));
         if (which != 0) {
-            slut_airlight_geometry g;
-            slut_airlight_setup(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
-                                std::sin(q.gamma_rad), std::cos(q.gamma_rad), q.length_m, &g);
-            if ((which == 1) != (slut_airlight_theta_fits_one_panel(&g) != 0)) continue;
+            const slut_airlight_geometry g =
+                slut_airlight_setup(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
+                                    std::sin(q.gamma_rad), std::cos(q.gamma_rad), q.length_m);
+            if ((which == 1) != (slut_airlight_theta_fits_one_panel(g) != 0)) continue;
         }
         qs.push_back(q);
     }

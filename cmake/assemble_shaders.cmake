@@ -1,15 +1,16 @@
 # Assembles one GPU sampling snippet (GLSL, GLSL ES 3.00 for WebGL2, or HLSL) from its one
-# source: the language-neutral body tables/shaders/src/<name>.slsl, the language prelude
+# source (docs/SHADERS.md, "One source"): the language-neutral body
+# tables/shaders/src/<name>.slsl (texture access and the entry points), the language prelude
 # (prelude.glsl / prelude.essl / prelude.hlsl: texture access, infinity, constant arrays,
-# ES precision), the shared
-# float math and C-subset layer (common.slsl) and, copied verbatim into that layer, the
-# regions between SLUT_SHADER_BEGIN and SLUT_SHADER_END of the kernels/ headers: the
-# axis maps and closed forms the generator and the C++ sampler compile, compiled a third
-# time as GLSL/HLSL (docs/SHADERS.md, "One source"). Their block comments are dropped
-# (the derivations stay in the headers; the snippets stay ASCII).
+# ES precision), and the shared part: the float math of common.slsl, then the kernels/
+# headers the generator and the C++ runtime compile, compiled a third time as
+# GLSL/HLSL in float through kernels/slut_compat.h's SLUT_SHADER branch — whole headers, or
+# the SLUT_SHADER_BEGIN/END regions of those not yet written in the shared subset. Their
+# block comments are dropped (the derivations stay in the headers; the snippets stay ASCII).
 # Usage: cmake -DLANG=glsl|hlsl|essl -DNAME=airlight -DSRC_DIR=tables/shaders/src
-#              -DKERNELS_DIR=kernels -DHEADERS="slut_axes.h|slut_nearlight.h" -DOUT=file
-#              -P assemble_shaders.cmake
+#              -DKERNELS_DIR=kernels
+#              -DHEADERS="slut_compat.h|slut_axes.h:regions|slut_airlight.h|slut_nearlight.h:regions"
+#              -DOUT=file -P assemble_shaders.cmake
 cmake_policy(VERSION 3.20)
 foreach(var LANG NAME SRC_DIR KERNELS_DIR HEADERS OUT)
   if(NOT DEFINED ${var})
@@ -52,56 +53,121 @@ function(slut_strip_block_comments text out_var)
   set(${out_var} "${result}" PARENT_SCOPE)
 endfunction()
 
-# The SLUT_SHADER regions of each header, in order.
-set(regions "")
-string(REPLACE "|" ", kernels/" header_list "${HEADERS}")
-string(REPLACE "|" ";" HEADERS "${HEADERS}")
-foreach(header IN LISTS HEADERS)
-  file(READ "${KERNELS_DIR}/${header}" text)
-  set(found 0)
-  while(TRUE)
-    string(FIND "${text}" "/* SLUT_SHADER_BEGIN" begin)
-    if(begin EQUAL -1)
-      break()
-    endif()
-    string(SUBSTRING "${text}" ${begin} -1 text)
-    string(FIND "${text}" "*/" begin_end)
-    math(EXPR begin_end "${begin_end} + 2")
-    string(SUBSTRING "${text}" ${begin_end} -1 text)
-    string(FIND "${text}" "/* SLUT_SHADER_END */" end)
-    if(end EQUAL -1)
-      message(FATAL_ERROR "assemble_shaders.cmake: ${header}: SLUT_SHADER_BEGIN without SLUT_SHADER_END")
-    endif()
-    string(SUBSTRING "${text}" 0 ${end} region)
-    string(SUBSTRING "${text}" ${end} -1 text)
-    slut_strip_block_comments("${region}" region)
-    string(STRIP "${region}" region)
-    string(APPEND regions "// ---- from kernels/${header} (read the derivations there)\n${region}\n\n")
-    math(EXPR found "${found} + 1")
-  endwhile()
-  if(found EQUAL 0)
-    message(FATAL_ERROR "assemble_shaders.cmake: ${header} has no SLUT_SHADER_BEGIN region")
+# The first block of `text` from `open` to `close` (both literal): sets block_found and, if
+# found, block_before (the text before `open`), block_inside (from `open` to `close`,
+# exclusive) and block_after (the text after `close`). An `open` without `close` is an error.
+function(slut_take_block text open close header)
+  set(block_found FALSE PARENT_SCOPE)
+  string(FIND "${text}" "${open}" begin)
+  if(begin EQUAL -1)
+    return()
   endif()
-endforeach()
-string(STRIP "${regions}" regions)
+  string(SUBSTRING "${text}" 0 ${begin} before)
+  string(SUBSTRING "${text}" ${begin} -1 rest)
+  string(FIND "${rest}" "${close}" end)
+  if(end EQUAL -1)
+    message(FATAL_ERROR "assemble_shaders.cmake: ${header}: '${open}' without '${close}'")
+  endif()
+  string(SUBSTRING "${rest}" 0 ${end} inside)
+  string(LENGTH "${close}" close_length)
+  math(EXPR after "${end} + ${close_length}")
+  string(SUBSTRING "${rest}" ${after} -1 rest)
+  set(block_found TRUE PARENT_SCOPE)
+  set(block_before "${before}" PARENT_SCOPE)
+  set(block_inside "${inside}" PARENT_SCOPE)
+  set(block_after "${rest}" PARENT_SCOPE)
+endfunction()
 
-# The Gauss-Legendre rule, from its one home (kernels/slut_airlight.h).
-file(READ "${KERNELS_DIR}/slut_airlight.h" airlight_h)
-set(gl16 "")
-foreach(array slut_gl16_x slut_gl16_w)
-  if(NOT airlight_h MATCHES "${array}\\[8\\] = {([^}]*)}")
-    message(FATAL_ERROR "assemble_shaders.cmake: ${array} not found in slut_airlight.h")
+# The shared C code, header by header in order: a header named alone is taken whole (its
+# `#include "..."` lines dropped: the list names every header; its `#ifndef SLUT_SHADER` ...
+# `#endif /* !SLUT_SHADER */` blocks dropped: double-only code the GPU preprocessor would skip
+# anyway); "header:regions" takes only its SLUT_SHADER_BEGIN/END regions.
+set(shared "")
+set(scanned "") # the shared code whose calls are checked below (all but slut_compat.h)
+string(REPLACE "|" ";" HEADERS "${HEADERS}")
+set(header_names "")
+foreach(entry IN LISTS HEADERS)
+  string(REPLACE ":" ";" entry "${entry}")
+  list(GET entry 0 header)
+  list(LENGTH entry parts)
+  set(mode whole)
+  if(parts GREATER 1)
+    list(GET entry 1 mode)
   endif()
-  string(REGEX REPLACE "[ \t\n]+" " " values "${CMAKE_MATCH_1}")
-  string(STRIP "${values}" values)
-  string(APPEND gl16 "SLUT_CONST_FLOAT8(${array}, ${values});\n")
+  list(APPEND header_names "kernels/${header}")
+  file(READ "${KERNELS_DIR}/${header}" text)
+  if(mode STREQUAL "whole")
+    while(TRUE) # (CMake regexes are greedy: one block at a time)
+      slut_take_block("${text}" "\n#ifndef SLUT_SHADER" "#endif /* !SLUT_SHADER */" "${header}")
+      if(NOT block_found)
+        break()
+      endif()
+      set(text "${block_before}\n${block_after}")
+    endwhile()
+    slut_strip_block_comments("${text}" text)
+    string(REGEX REPLACE "#include \"[^\"\n]*\"[^\n]*\n" "" text "${text}")
+    string(REGEX REPLACE "\n\n\n+" "\n\n" text "${text}")
+    string(STRIP "${text}" text)
+    string(APPEND shared "// ---- kernels/${header} (read the derivations there)\n${text}\n\n")
+    if(NOT header STREQUAL "slut_compat.h")
+      string(APPEND scanned "${text}\n")
+    endif()
+  elseif(mode STREQUAL "regions")
+    set(found 0)
+    while(TRUE)
+      slut_take_block("${text}" "/* SLUT_SHADER_BEGIN" "/* SLUT_SHADER_END */" "${header}")
+      if(NOT block_found)
+        break()
+      endif()
+      set(text "${block_after}")
+      string(FIND "${block_inside}" "*/" opening_end) # the region starts after its opening comment
+      math(EXPR opening_end "${opening_end} + 2")
+      string(SUBSTRING "${block_inside}" ${opening_end} -1 region)
+      slut_strip_block_comments("${region}" region)
+      string(STRIP "${region}" region)
+      string(APPEND shared "// ---- from kernels/${header} (read the derivations there)\n${region}\n\n")
+      string(APPEND scanned "${region}\n")
+      math(EXPR found "${found} + 1")
+    endwhile()
+    if(found EQUAL 0)
+      message(FATAL_ERROR "assemble_shaders.cmake: ${header} has no SLUT_SHADER_BEGIN region")
+    endif()
+  else()
+    message(FATAL_ERROR "assemble_shaders.cmake: '${header}:${mode}': the mode must be 'regions' or none")
+  endif()
 endforeach()
-string(STRIP "${gl16}" gl16)
+string(STRIP "${shared}" shared)
+string(REPLACE ";" ", " header_list "${header_names}")
+
+# No silent fall-through to a GPU built-in: every call in the shared code must be to a
+# function or macro the shared code defines, or to a math function kernels/slut_compat.h
+# maps explicitly for the GPU (its SLUT_SHADER branch).
+file(READ "${KERNELS_DIR}/slut_compat.h" compat_text)
+string(REGEX MATCHALL "#  define [a-z0-9_]+\\(" mapped "${compat_text}")
+string(REGEX MATCHALL "SLUT_FN [A-Za-z0-9_]+[ \n]+[A-Za-z0-9_]+\\(" defined_functions "${shared}")
+string(REGEX MATCHALL "#define [A-Za-z0-9_]+\\(" defined_macros "${shared}")
+set(known if for while switch return int float double)
+foreach(item IN LISTS mapped defined_functions defined_macros)
+  string(REGEX REPLACE "^.*[ \n]([A-Za-z0-9_]+)\\($" "\\1" name "${item}")
+  list(APPEND known ${name})
+endforeach()
+string(REGEX REPLACE "#[^\n]*\n" "\n" scanned_code "${scanned}") # macro definitions: checked where used
+string(REGEX MATCHALL "[A-Za-z_][A-Za-z0-9_]*[ \t]*\\(" calls "${scanned_code}")
+set(unknown "")
+foreach(call IN LISTS calls)
+  string(REGEX REPLACE "[ \t]*\\($" "" name "${call}")
+  if(NOT name MATCHES "^SLUT_" AND NOT name IN_LIST known AND NOT name IN_LIST unknown)
+    list(APPEND unknown ${name})
+  endif()
+endforeach()
+if(unknown)
+  message(FATAL_ERROR "assemble_shaders.cmake: the shared code calls ${unknown}, which kernels/slut_compat.h "
+                      "does not map for the GPU: add it there (and its float version to tables/shaders/src/common.slsl)")
+endif()
 
 file(READ "${SRC_DIR}/prelude.${LANG}" prelude)
 file(READ "${SRC_DIR}/common.slsl" common)
-string(REPLACE "@SLUT_GL16@" "${gl16}" common "${common}")
-string(REPLACE "@SLUT_C_REGIONS@" "${regions}" common "${common}")
+string(REPLACE "@SLUT_C_HEADERS@" "${shared}" common "${common}")
 file(READ "${SRC_DIR}/${NAME}.slsl" body)
 string(FIND "${body}" "@SLUT_PRELUDE@" at)
 if(at EQUAL -1)
@@ -115,8 +181,8 @@ string(TOUPPER "SCATTERLUT_${NAME}_${LANG}" guard)
 
 set(out "// GENERATED at build time by cmake/assemble_shaders.cmake -- do not edit. Sources:
 // tables/shaders/src/${NAME}.slsl (this snippet), prelude.${LANG} (${lang_name} glue),
-// common.slsl (float math), and the SLUT_SHADER regions of kernels/${header_list}
-// (the axis maps and closed forms the generator and the C++ sampler compile).
+// common.slsl (float math), and ${header_list}
+// (the code the generator and the C++ runtime compile, here in float).
 //
 ${doc}#ifndef ${guard}
 #define ${guard}

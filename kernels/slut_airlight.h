@@ -33,23 +33,25 @@
 /* ---------------------------------------------------------------- quadrature rule */
 
 /* 16-point Gauss–Legendre on [−1, 1]: the positive nodes and their weights. */
-SLUT_CONSTANT double slut_gl16_x[8] = {
-    0.0950125098376374401853, 0.28160355077925891323,  0.458016777657227386342,
-    0.617876244402643748447,  0.755404408355003033895, 0.86563120238783174388,
-    0.944575023073232576078,  0.989400934991649932596};
-SLUT_CONSTANT double slut_gl16_w[8] = {
-    0.189450610455068496285,  0.182603415044923588867,  0.169156519395002538189,
-    0.149595988816576732082,  0.124628971255533872052,  0.0951585116824927848099,
-    0.0622535239386478928628, 0.0271524594117540948518};
+SLUT_CONST_ARRAY8(slut_gl16_x,
+                  0.0950125098376374401853, 0.28160355077925891323, 0.458016777657227386342,
+                  0.617876244402643748447, 0.755404408355003033895, 0.86563120238783174388,
+                  0.944575023073232576078, 0.989400934991649932596);
+SLUT_CONST_ARRAY8(slut_gl16_w,
+                  0.189450610455068496285, 0.182603415044923588867, 0.169156519395002538189,
+                  0.149595988816576732082, 0.124628971255533872052, 0.0951585116824927848099,
+                  0.0622535239386478928628, 0.0271524594117540948518);
 
 /* 8-point Gauss–Legendre on [−1, 1] (the positive nodes and weights, mpmath to 21 digits):
  * the θ-integral's rule where the radiance needs only a table's accuracy (see below). */
-SLUT_CONSTANT double slut_gl8_x[4] = {0.183434642495649804939, 0.525532409916328985818,
-                                      0.796666477413626739592, 0.960289856497536231684};
-SLUT_CONSTANT double slut_gl8_w[4] = {0.362683783378361982965, 0.313706645877887287338,
-                                      0.222381034453374470544, 0.101228536290376259153};
+SLUT_CONST_ARRAY4(slut_gl8_x, 0.183434642495649804939, 0.525532409916328985818, 0.796666477413626739592,
+                  0.960289856497536231684);
+SLUT_CONST_ARRAY4(slut_gl8_w, 0.362683783378361982965, 0.313706645877887287338, 0.222381034453374470544,
+                  0.101228536290376259153);
 
 /* ------------------------------------------------------ scaled tail by quadrature */
+
+#ifndef SLUT_SHADER /* the generator's and the reference's: double only */
 
 /* ∫_a^b e^{−u y} / (1 + (τ + y)²) dy with 16-point Gauss–Legendre. */
 SLUT_FN double slut_gs_panel(double u, double tau, double a, double b) {
@@ -131,6 +133,8 @@ SLUT_FN double slut_tail_quadrature(double u, double v) {
     return exp(-u * tan_v) * slut_w_gs_quadrature(u, w, 1.0);
 }
 
+#endif /* !SLUT_SHADER */
+
 /* ------------------------------------------------------------ closed forms of G̃ */
 
 /* e^a E_n(a) for n ≥ 1, a ≥ 0 (E_n the exponential integral), relative error ~1e-15.
@@ -139,16 +143,17 @@ SLUT_FN double slut_tail_quadrature(double u, double v) {
  * E_1(a) = −γ_E − ln a − Σ_{k≥1} (−a)^k/(k·k!), then the upward recurrence
  * E_{m+1}(a) = (e^{−a} − a E_m(a))/m, which loses nothing for a < 1. E_n(0) = 1/(n−1). */
 SLUT_FN double slut_exp_expint(int n, double a) {
+    if (a > SLUT_EXPINT_LEADING_ABOVE) return 1.0 / (a + SLUT_DOUBLE(n)); /* also a = +∞ */
     if (a >= 1.0) {
-        double b = a + (double)n, c = 1.0 / 1e-300, d = 1.0 / b, h = d;
-        for (int i = 1; i < 500; ++i) {
-            double an = -(double)i * ((double)(n - 1) + (double)i);
+        double b = a + SLUT_DOUBLE(n), c = 1.0 / SLUT_TINY, d = 1.0 / b, h = d;
+        for (int i = 1; i < SLUT_EXPINT_CF_MAX_ITER; ++i) {
+            double an = -SLUT_DOUBLE(i) * (SLUT_DOUBLE(n - 1) + SLUT_DOUBLE(i));
             b += 2.0;
             d = 1.0 / (an * d + b);
             c = b + an / c;
             double del = c * d;
             h *= del;
-            if (fabs(del - 1.0) < 1e-16) break;
+            if (fabs(del - 1.0) < SLUT_CF_CONVERGED) break;
         }
         return h;
     }
@@ -156,18 +161,18 @@ SLUT_FN double slut_exp_expint(int n, double a) {
     double e_m; /* e^a E_m(a), starting at m = 1 */
     if (a <= 0.0) {
         if (n == 1) return SLUT_HUGE_VAL;
-        return 1.0 / (double)(n - 1);
+        return 1.0 / SLUT_DOUBLE(n - 1);
     }
     {
         double sum = 0.0, term = 1.0;
-        for (int k = 1; k < 40; ++k) {
-            term *= -a / (double)k;          /* (−a)^k / k! */
-            sum += term / (double)k;
-            if (fabs(term) < 1e-18) break;
+        for (int k = 1; k < SLUT_EXPINT_SERIES_MAX_TERMS; ++k) {
+            term *= -a / SLUT_DOUBLE(k);     /* (−a)^k / k! */
+            sum += term / SLUT_DOUBLE(k);
+            if (fabs(term) < SLUT_SERIES_NEGLIGIBLE) break;
         }
         e_m = ea * (-0.57721566490153286061 - log(a) - sum);
     }
-    for (int m = 1; m < n; ++m) e_m = (1.0 - a * e_m) / (double)m;
+    for (int m = 1; m < n; ++m) e_m = (1.0 - a * e_m) / SLUT_DOUBLE(m);
     return e_m;
 }
 
@@ -193,13 +198,13 @@ SLUT_FN double slut_gs_small_w(double w, double a) {
  * one cos instead of twelve sines; the table generator calls this once per w node). Its
  * rounding error grows like the Chebyshev polynomials U_k(cos w), ≤ k²/6 ≈ 24 ulp of the
  * largest |sin(jw)| at k = 12: ~5e-15 of a coefficient whose term is a small correction. */
-SLUT_FN void slut_gs_large_u_coefficients(double w, double *c) {
+SLUT_FN void slut_gs_large_u_coefficients(double w, SLUT_OUT_ARRAY(double, c, SLUT_GS_SERIES_TERMS)) {
     double sw = sin(w), two_cos = 2.0 * cos(w), power = sw; /* k!·(sin w)^{k+1} */
     double sin_k = 0.0, sin_k1 = sw;                             /* sin(k w), sin((k + 1) w) */
     for (int k = 0; k < SLUT_GS_SERIES_TERMS; ++k) {
         double term = power * sin_k1;
-        c[k] = (k & 1) ? -term : term;
-        power *= sw * (double)(k + 1);
+        c[k] = ((k & 1) != 0) ? -term : term;
+        power *= sw * SLUT_DOUBLE(k + 1);
         double next = two_cos * sin_k1 - sin_k;
         sin_k = sin_k1;
         sin_k1 = next;
@@ -220,6 +225,7 @@ SLUT_FN double slut_gs_large_u(double u, double w) {
     return sum / w;
 }
 
+#ifndef SLUT_SHADER /* the generator's */
 /* The same series at all SLUT_GS_SERIES_TERMS = 12 terms for every u ≥ slut_gs_series_u_min(w): Watson's
  * remainder is ≤ sup|f^{(12)}|/u^{13} ≤ 12! (sin w)^{13}/u^{13} (|τ + y + i| ≥ 1/sin w), and
  * w·G̃ ≥ 0.63 f(τ + 1/u)/u ≳ ½ sin² w/u, so the relative error is
@@ -231,6 +237,7 @@ SLUT_FN double slut_gs_series_u_min(double w) {
     /* (2·12!·sin^11 w / 1e-16)^{1/12}, 12! = 479001600 */
     return exp((log(2.0 * 479001600.0 / 1e-16) + 11.0 * log(sw)) / 12.0);
 }
+#endif /* !SLUT_SHADER */
 
 /* Short intervals of the table sweep (kernels/airlight_F.cl): a rule Σ_n W_n e^{−u y_n}
  * with every node in [0, Δ] and u·Δ ≤ 2X (X = SLUT_GS_TAYLOR_X) needs one exponential,
@@ -260,7 +267,7 @@ SLUT_FN double slut_gs_series_u_min(double w) {
  *   dv = ½ atan2(s sin γ, y),  y = D − s cos γ:  tan dv = s sin γ/(d + y) = (d − y)/(s sin γ);
  * with d = d(s) = √(x² + D² sin² γ) = √(y² + s² sin² γ). a1 = u·cot w1 = σ_t (x + d), written
  * σ_t D² sin² γ/(d − x) for x < 0. */
-typedef struct slut_airlight_geometry {
+SLUT_STRUCT_BEGIN(slut_airlight_geometry)
     int kind;
     double scale;      /* σ_s/(4π)·I0·2e^{−σ_t D}/D (slut_airlight_set_scale)               */
     double log_scale;  /* ln scale, set only where scale is not a normal double (0, subnormal or
@@ -268,7 +275,7 @@ typedef struct slut_airlight_geometry {
     double scale_unattenuated; /* σ_s/(4π)·I0·2/D: scale = scale_unattenuated·e^{−optical_distance} */
     double log_scale_unattenuated; /* ln scale_unattenuated, set only where that is not a normal double */
     double optical_distance;   /* σ_t D                                                    */
-    double sin_gamma;  /* sin γ, ≥ 1e-300 (exact 0 is nudged; the limits below are finite) */
+    double sin_gamma;  /* sin γ, ≥ SLUT_TINY (exact 0 is nudged; the limits below are finite) */
     double sin_half;   /* sin(γ/2) = cos w2                                                 */
     double cos_half;   /* cos(γ/2) = sin w2                                                 */
     double u;          /* σ_t D sin γ                                                      */
@@ -283,7 +290,7 @@ typedef struct slut_airlight_geometry {
     double tan_dv;     /* tan dv (+∞ for an infinite ray at γ = 0: never used there)        */
     double tan_w1;     /* tan w1 (0 for an infinite ray)                                   */
     double optical_delta; /* σ_t Δ (+∞ for an infinite ray)                                */
-} slut_airlight_geometry;
+SLUT_STRUCT_END(slut_airlight_geometry);
 
 /* From sin(γ/2), cos(γ/2) and w2 = π/2 − γ/2 (all three given: a caller with γ computes
  * w2 exactly, one with sin γ and cos γ derives them below): everything but the far end's
@@ -291,130 +298,152 @@ typedef struct slut_airlight_geometry {
  * (slut_airlight_setup_far_end; the table radiance needs them only where it samples). */
 /* slut_airlight_setup_near_end_unscaled leaves scale (its exp) to the caller: the runtime
  * folds e^{−σ_t D} into the exponentials it evaluates anyway (tables/src/airlight.cpp). */
-SLUT_FN void slut_airlight_setup_near_end_unscaled(double sigma_s, double sigma_a, double intensity, double distance,
-                                                   double sin_half, double cos_half, double w2, double length,
-                                                   slut_airlight_geometry *g) {
+SLUT_FN slut_airlight_geometry slut_airlight_setup_near_end_unscaled(double sigma_s, double sigma_a, double intensity,
+                                                                     double distance, double sin_half, double cos_half,
+                                                                     double w2, double length) {
+    slut_airlight_geometry g;
     double sigma_t = sigma_s + sigma_a;
     double D = distance, s = length;
-    g->kind = 0;
-    if (!(sigma_s > 0.0) || !(intensity > 0.0) || !(s > 0.0)) { g->kind = 1; return; }
-    if (!(sin_half > 0.0) && s >= D) { g->kind = 2; return; }
-    /* σ_t D ≥ 1e300: e^{−σ_t D} is 0 against any finite factor (the limit, not an underflow
+    g.kind = 0;
+    if (!(sigma_s > 0.0) || !(intensity > 0.0) || !(s > 0.0)) { g.kind = 1; return g; }
+    if (!(sin_half > 0.0) && s >= D) { g.kind = 2; return g; }
+    /* σ_t D ≥ SLUT_INFINITE_ABOVE: e^{−σ_t D} is 0 against any finite factor (the limit, not an underflow
      * artefact), and c, u would overflow into ∞·0 in the integrands. */
-    if (!(sigma_t * D < 1e300)) { g->kind = 1; return; }
-    double sg = fmax(2.0 * sin_half * cos_half, 1e-300);
+    if (!(sigma_t * D < SLUT_INFINITE_ABOVE)) { g.kind = 1; return g; }
+    double sg = fmax(2.0 * sin_half * cos_half, SLUT_TINY);
     double cos_gamma = (cos_half - sin_half) * (cos_half + sin_half);
-    g->sin_gamma = sg;
-    g->sin_half = sin_half;
-    g->cos_half = cos_half;
-    g->scale_unattenuated = sigma_s * SLUT_INV_4PI * intensity * 2.0 / D;
-    g->log_scale_unattenuated = 0.0;
-    if (!(g->scale_unattenuated >= SLUT_DBL_MIN_NORMAL && g->scale_unattenuated <= SLUT_DBL_MAX)) /* σ_s·I0/D beyond range */
-        g->log_scale_unattenuated = log(sigma_s) + log(SLUT_INV_4PI * 2.0) + log(intensity) - log(D);
-    g->optical_distance = sigma_t * D;
-    g->u = sigma_t * D * sg;
-    g->w2 = w2;
-    g->a2 = sigma_t * D * (2.0 * sin_half * sin_half);
-    g->c = 2.0 * sigma_t * D * sin_half;
+    g.sin_gamma = sg;
+    g.sin_half = sin_half;
+    g.cos_half = cos_half;
+    g.scale_unattenuated = sigma_s * SLUT_INV_4PI * intensity * 2.0 / D;
+    g.log_scale_unattenuated = 0.0;
+    /* σ_s·I0/D beyond range: */
+    if (!(g.scale_unattenuated >= SLUT_REAL_MIN_NORMAL && g.scale_unattenuated <= SLUT_REAL_MAX))
+        g.log_scale_unattenuated = log(sigma_s) + log(SLUT_INV_4PI * 2.0) + log(intensity) - log(D);
+    g.optical_distance = sigma_t * D;
+    g.u = sigma_t * D * sg;
+    g.w2 = w2;
+    g.a2 = sigma_t * D * (2.0 * sin_half * sin_half);
+    g.c = 2.0 * sigma_t * D * sin_half;
     if (!SLUT_ISFINITE(s)) { /* an infinite ray: the far end is at ξ = π/2 */
-        g->tan_w1 = 0.0;
-        g->a1 = SLUT_HUGE_VAL;
-        g->optical_delta = SLUT_HUGE_VAL;
-        g->tan_dv = cos_half / sin_half;
-        return;
+        g.tan_w1 = 0.0;
+        g.a1 = SLUT_HUGE_VAL;
+        g.optical_delta = SLUT_HUGE_VAL;
+        g.tan_dv = cos_half / sin_half;
+        return g;
     }
     /* d(s)² = (s − D)² + 4sD sin²(γ/2); Δ = s + d − D = s + s(s − 2D cos γ)/(d + D). Lengths
-     * beyond [1e-150, 1e150] would under- or overflow in the squares: there d is computed in
+     * beyond [SLUT_SQUARABLE_MIN, SLUT_SQUARABLE_MAX] (double: 1e∓150) would under- or overflow
+     * in the squares: there d is computed in
      * units of max(s, D) and Δ's quotient without s² (same value, other rounding). */
     double m = fmax(s, D);
-    int moderate = m >= 1e-150 && m <= 1e150;
-    double d_far = moderate ? sqrt((s - D) * (s - D) + 4.0 * s * D * sin_half * sin_half)
+    int moderate = (m >= SLUT_SQUARABLE_MIN && m <= SLUT_SQUARABLE_MAX) ? 1 : 0;
+    double d_far = (moderate != 0) ? sqrt((s - D) * (s - D) + 4.0 * s * D * sin_half * sin_half)
                             : m * sqrt(((s - D) / m) * ((s - D) / m) + 4.0 * (s / m) * (D / m) * sin_half * sin_half);
     double x = s - D * cos_gamma, ds = D * sg;
     double y = D - s * cos_gamma, ss = s * sg;
-    g->tan_w1 = (x >= 0.0) ? ds / (d_far + x) : (d_far - x) / ds;
-    g->a1 = sigma_t * ((x >= 0.0) ? x + d_far : ds * (ds / (d_far - x)));
-    g->tan_dv = (y >= 0.0) ? ss / (d_far + y) : (d_far - y) / ss;
-    g->optical_delta = sigma_t * fmax(moderate ? s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D)
+    g.tan_w1 = (x >= 0.0) ? ds / (d_far + x) : (d_far - x) / ds;
+    g.a1 = sigma_t * ((x >= 0.0) ? x + d_far : ds * (ds / (d_far - x)));
+    g.tan_dv = (y >= 0.0) ? ss / (d_far + y) : (d_far - y) / ss;
+    g.optical_delta = sigma_t * fmax((moderate != 0) ? s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D)
                                                : s + s * ((s - 2.0 * D * cos_gamma) / (d_far + D)),
                                       0.0);
+    return g;
 }
 
 /* scale = scale_unattenuated·e^{−σ_t D}, and its logarithm where the product is not a normal
  * double (σ_s·I0 overflowing, e^{−σ_t D} underflowing): slut_airlight_scaled then multiplies
  * in logarithms and still gives the limit. */
-SLUT_FN void slut_airlight_set_scale(slut_airlight_geometry *g) {
-    if (g->kind != 0) return;
-    g->scale = g->scale_unattenuated * exp(-g->optical_distance);
-    g->log_scale = 0.0;
-    if (!(g->scale >= SLUT_DBL_MIN_NORMAL && g->scale <= SLUT_DBL_MAX)) /* under- or overflowed */
-        g->log_scale = ((g->log_scale_unattenuated != 0.0) ? g->log_scale_unattenuated : log(g->scale_unattenuated)) -
-                       g->optical_distance;
+SLUT_FN slut_airlight_geometry slut_airlight_set_scale(slut_airlight_geometry g) {
+    if (g.kind != 0) return g;
+    g.scale = g.scale_unattenuated * exp(-g.optical_distance);
+    g.log_scale = 0.0;
+    if (!(g.scale >= SLUT_REAL_MIN_NORMAL && g.scale <= SLUT_REAL_MAX)) /* under- or overflowed */
+        g.log_scale = ((g.log_scale_unattenuated != 0.0) ? g.log_scale_unattenuated : log(g.scale_unattenuated)) -
+                       g.optical_distance;
+    return g;
 }
 
+#ifndef SLUT_SHADER /* the runtime's fast paths (double ranges) */
 /* Where a caller may form scale·ratio as plain products with e^{−σ_t D} folded into its own
  * exponentials (the runtime's fast paths, tables/src/airlight.cpp): σ_s·I0·2/(4πD) within
  * [1e-100, 1e100], σ_t D ≤ 300 and D, s within [1e-100, 1e100] (s = ∞ allowed) keep every
  * factor and product a normal double. Elsewhere slut_airlight_set_scale and
  * slut_airlight_scaled (logarithms) serve. */
-SLUT_FN int slut_airlight_scale_is_plain(const slut_airlight_geometry *g, double distance, double length) {
-    return g->scale_unattenuated >= 1e-100 && g->scale_unattenuated <= 1e100 && g->optical_distance <= 300.0 &&
+SLUT_FN int slut_airlight_scale_is_plain(slut_airlight_geometry g, double distance, double length) {
+    return g.scale_unattenuated >= 1e-100 && g.scale_unattenuated <= 1e100 && g.optical_distance <= 300.0 &&
            distance >= 1e-100 && distance <= 1e100 && length >= 1e-100 &&
            (length <= 1e100 || length > SLUT_INFINITE_ABOVE);
 }
+#endif /* !SLUT_SHADER */
 
-SLUT_FN void slut_airlight_setup_near_end(double sigma_s, double sigma_a, double intensity, double distance,
-                                          double sin_half, double cos_half, double w2, double length,
-                                          slut_airlight_geometry *g) {
-    slut_airlight_setup_near_end_unscaled(sigma_s, sigma_a, intensity, distance, sin_half, cos_half, w2, length, g);
-    slut_airlight_set_scale(g);
+SLUT_FN slut_airlight_geometry slut_airlight_setup_near_end(double sigma_s, double sigma_a, double intensity,
+                                                            double distance, double sin_half, double cos_half,
+                                                            double w2, double length) {
+    return slut_airlight_set_scale(slut_airlight_setup_near_end_unscaled(sigma_s, sigma_a, intensity, distance,
+                                                                         sin_half, cos_half, w2, length));
 }
 
 /* w1 and e^{−σ_t Δ} from tan w1 and σ_t Δ (slut_airlight_setup_near_end); dv is left to
  * the callers that integrate (slut_airlight_setup_half_angle; slut_airlight_from_gs computes
  * it where it falls back to the θ-integral). */
-SLUT_FN void slut_airlight_setup_far_end(slut_airlight_geometry *g) {
-    if (g->kind != 0) return;
-    if (!SLUT_ISFINITE(g->optical_delta)) { /* an infinite ray */
-        g->w1 = 0.0;
-        g->dv = g->w2;
-        g->far_attenuation = 0.0;
-        return;
+SLUT_FN slut_airlight_geometry slut_airlight_setup_far_end(slut_airlight_geometry g) {
+    if (g.kind != 0) return g;
+    if (!SLUT_ISFINITE(g.optical_delta)) { /* an infinite ray */
+        g.w1 = 0.0;
+        g.dv = g.w2;
+        g.far_attenuation = 0.0;
+        return g;
     }
-    g->w1 = atan(g->tan_w1);
-    g->dv = -1.0; /* not computed: atan(tan_dv) */
-    g->far_attenuation = exp(-g->optical_delta);
+    g.w1 = atan(g.tan_w1);
+    g.dv = -1.0; /* not computed: atan(tan_dv) */
+    g.far_attenuation = exp(-g.optical_delta);
+    return g;
 }
 
 /* dv = w2 − w1, the θ-integral's length (from tan dv; w2 for an infinite ray). */
-SLUT_FN double slut_airlight_dv(const slut_airlight_geometry *g) {
-    return SLUT_ISFINITE(g->optical_delta) ? atan(g->tan_dv) : g->w2;
+SLUT_FN double slut_airlight_dv(slut_airlight_geometry g) {
+    return SLUT_ISFINITE(g.optical_delta) ? atan(g.tan_dv) : g.w2;
 }
 
 /* The far end and dv: what slut_airlight_setup_near_end leaves, for the exact radiance. */
-SLUT_FN void slut_airlight_setup_far_end_and_dv(slut_airlight_geometry *g) {
-    slut_airlight_setup_far_end(g);
-    if (g->kind == 0) g->dv = slut_airlight_dv(g);
+SLUT_FN slut_airlight_geometry slut_airlight_setup_far_end_and_dv(slut_airlight_geometry g) {
+    slut_airlight_geometry both = slut_airlight_setup_far_end(g);
+    if (both.kind == 0) both.dv = slut_airlight_dv(both);
+    return both;
 }
 
-SLUT_FN void slut_airlight_setup_half_angle(double sigma_s, double sigma_a, double intensity, double distance,
-                                            double sin_half, double cos_half, double w2, double length,
-                                            slut_airlight_geometry *g) {
-    slut_airlight_setup_near_end(sigma_s, sigma_a, intensity, distance, sin_half, cos_half, w2, length, g);
-    slut_airlight_setup_far_end_and_dv(g);
+SLUT_FN slut_airlight_geometry slut_airlight_setup_half_angle(double sigma_s, double sigma_a, double intensity,
+                                                              double distance, double sin_half, double cos_half,
+                                                              double w2, double length) {
+    return slut_airlight_setup_far_end_and_dv(
+        slut_airlight_setup_near_end(sigma_s, sigma_a, intensity, distance, sin_half, cos_half, w2, length));
 }
 
-/* From sin γ and cos γ (γ ∈ [0, π]): 1 ∓ cos γ without cancellation on either side
- * (sin² γ = (1 − cos γ)(1 + cos γ)), the half angle's sine and cosine from them, and
- * w2 = π/2 − γ/2 = ½ atan2(sin γ, −cos γ). */
-SLUT_FN void slut_airlight_setup(double sigma_s, double sigma_a, double intensity, double distance,
-                                 double sin_gamma, double cos_gamma, double length,
-                                 slut_airlight_geometry *g) {
+/* From sin γ and cos γ (γ ∈ [0, π]): sin(γ/2) = √((1 − cos γ)/2) and cos(γ/2) = √((1 + cos γ)/2),
+ * the one of them whose 1 ∓ cos γ would cancel as sin γ/(2 cos(γ/2)) or sin γ/(2 sin(γ/2))
+ * (sin² γ = (1 − cos γ)(1 + cos γ); no square of sin γ, which float would underflow), and
+ * w2 = π/2 − γ/2 = ½ atan2(sin γ, −cos γ). The near end alone: the far end as above. */
+SLUT_FN slut_airlight_geometry slut_airlight_setup_near_end_gamma(double sigma_s, double sigma_a, double intensity,
+                                                                  double distance, double sin_gamma, double cos_gamma,
+                                                                  double length) {
     double sg = fmax(sin_gamma, 0.0);
-    double one_minus_cos = (cos_gamma > 0.0) ? sg * sg / (1.0 + cos_gamma) : 1.0 - cos_gamma;
-    double one_plus_cos = (cos_gamma < 0.0) ? sg * sg / (1.0 - cos_gamma) : 1.0 + cos_gamma;
-    slut_airlight_setup_half_angle(sigma_s, sigma_a, intensity, distance, sqrt(0.5 * one_minus_cos),
-                                   sqrt(0.5 * one_plus_cos), 0.5 * atan2(fmax(sg, 1e-300), -cos_gamma), length, g);
+    double sin_half = (cos_gamma > 0.0) ? sg / sqrt(2.0 * (1.0 + cos_gamma)) : sqrt(0.5 * (1.0 - cos_gamma));
+    /* Near γ = π, sin γ is floored at SLUT_SQUARABLE_MIN (1e-150; float 1e-18) for cos(γ/2)
+     * and w2: never 0 (the limits divide by them, as the half-angle callers' cos(π/2) = 6e-17
+     * does) and with a normal square (the θ-rules' decay rate divides by sin² of their pole
+     * distance, ≤ w2). sin(γ/2) = 0 at γ = 0 stays exact: it marks the ray through the light. */
+    double sg_floored = fmax(sg, SLUT_SQUARABLE_MIN);
+    double cos_half = (cos_gamma < 0.0) ? sg_floored / sqrt(2.0 * (1.0 - cos_gamma)) : sqrt(0.5 * (1.0 + cos_gamma));
+    return slut_airlight_setup_near_end(sigma_s, sigma_a, intensity, distance, sin_half, cos_half,
+                                        0.5 * atan2(sg_floored, -cos_gamma), length);
+}
+
+/* Both ends from sin γ and cos γ. */
+SLUT_FN slut_airlight_geometry slut_airlight_setup(double sigma_s, double sigma_a, double intensity, double distance,
+                                                   double sin_gamma, double cos_gamma, double length) {
+    return slut_airlight_setup_far_end_and_dv(
+        slut_airlight_setup_near_end_gamma(sigma_s, sigma_a, intensity, distance, sin_gamma, cos_gamma, length));
 }
 
 /* ∫_0^{dv} exp(−c sin θ / sin(w2 − θ)) dθ, 0 ≤ dv ≤ w2 ≤ π/2: the bracket of the airlight
@@ -427,22 +456,22 @@ SLUT_FN void slut_airlight_setup(double sigma_s, double sigma_a, double intensit
  * (gl16 = 1). With 8 points (gl16 = 0, half the work) the same panels give: pole
  * ρ_B^{−16} ≤ 1.2e-16; decay, the n-point Gauss remainder of e^{−λθ} over λh ≤ 4,
  * (λh)^{2n} (n!)⁴/((2n + 1)((2n)!)³) ≤ 7e-14 at n = 8: ~1e-13 relative (≤ 1e-11 against
- * the Boost reference in tests/test_airlight, EightPointThetaRuleMatchesDirectQuadrature),
+ * the Boost reference in tests/runtime/test_airlight_table, EightPointThetaRuleMatchesDirectQuadrature),
  * far below any table's error (the table radiance's tolerance there is 1e-3). */
 SLUT_FN double slut_airlight_theta_integral_rule(double c, double w2, double dv, int gl16) {
     if (dv <= 0.0) return 0.0;
     if (c <= 0.0) return dv;
-    int half_points = gl16 ? 8 : 4;
+    int half_points = (gl16 != 0) ? 8 : 4;
     double sin_w2 = sin(w2);
     double delta = w2;            /* distance from the panel start to the pole */
     double remaining = dv;        /* distance from the panel start to the end */
     double sum = 0.0;
-    for (int panel = 0; panel < 20000 && remaining > 0.0; ++panel) {
+    for (int panel = 0; panel < SLUT_THETA_MAX_PANELS && remaining > 0.0; ++panel) {
         double theta = dv - remaining;
         double sd = sin(delta), cd = cos(delta), st = sin(theta), ct = cos(theta);
         double rate = c * sin_w2 / (sd * sd);
         double f_start = exp(-c * st / sd);
-        if (panel > 0 && f_start <= 1e-17 * sum * rate) break;
+        if (panel > 0 && f_start <= SLUT_REMAINDER_NEGLIGIBLE * sum * rate) break;
         double h = fmin(remaining, fmin(0.25 * delta, 4.0 / rate));
         /* The panel in t = tan x, x = θ − theta ∈ [0, h]: dividing by cos x,
          *   sin(theta + x)/sin(delta − x) = (st + t ct)/(sd − t cd),  dθ = dt/(1 + t²),
@@ -451,10 +480,10 @@ SLUT_FN double slut_airlight_theta_integral_rule(double c, double w2, double dv,
          * at ±i ≥ 2.4 panel lengths away: Bernstein ρ ≥ 9.8). */
         double half_len = 0.5 * tan(h), part = 0.0;
         for (int k = 0; k < half_points; ++k) {
-            double node = gl16 ? slut_gl16_x[k] : slut_gl8_x[k];
-            double weight = gl16 ? slut_gl16_w[k] : slut_gl8_w[k];
+            double node = (gl16 != 0) ? slut_gl16_x[k] : slut_gl8_x[k];
+            double weight = (gl16 != 0) ? slut_gl16_w[k] : slut_gl8_w[k];
             for (int side = -1; side <= 1; side += 2) {
-                double t = half_len + (double)side * half_len * node;
+                double t = half_len + SLUT_DOUBLE(side) * half_len * node;
                 part += weight * exp(-c * (st + t * ct) / (sd - t * cd)) / (1.0 + t * t);
             }
         }
@@ -469,8 +498,8 @@ SLUT_FN double slut_airlight_theta_integral(double c, double w2, double dv) {
 }
 
 /* 6-point Gauss–Legendre on [−1, 1] (the positive nodes and weights, mpmath to 21 digits). */
-SLUT_CONSTANT double slut_gl6_x[3] = {0.238619186083196908631, 0.661209386466264513661, 0.932469514203152027812};
-SLUT_CONSTANT double slut_gl6_w[3] = {0.467913934572691047390, 0.360761573048138607570, 0.171324492379170345040};
+SLUT_CONST_ARRAY3(slut_gl6_x, 0.238619186083196908631, 0.661209386466264513661, 0.932469514203152027812);
+SLUT_CONST_ARRAY3(slut_gl6_w, 0.467913934572691047390, 0.360761573048138607570, 0.171324492379170345040);
 
 /* The θ-integral of a segment short enough for one panel of slut_airlight_theta_integral_rule
  * (its first panel's bounds, with tan dv ≥ dv in place of dv: tan dv ≤ w2/4 and
@@ -483,14 +512,16 @@ SLUT_CONSTANT double slut_gl6_w[3] = {0.467913934572691047390, 0.360761573048138
  * Gauss remainder for λh ≤ 4 is ≤ 3e-9 (the bound quoted at the θ-rule), the poles
  * ρ_B^{−12} ≤ 1e-12; measured ≤ 8e-12 against slut_airlight_theta_integral on 20000 of the
  * bench's geometries and 1.3e-12 against Boost.Math on the 384 of 400 test geometries that
- * fit (tests/test_airlight, OnePanelThetaRuleMatchesDirectQuadrature; tolerance 1e-9). sin w2 = cos(γ/2), cos w2 = sin(γ/2). */
-SLUT_FN int slut_airlight_theta_fits_one_panel(const slut_airlight_geometry *g) {
-    return g->kind == 0 && g->tan_dv <= 0.25 * g->w2 && g->c * g->tan_dv <= 4.0 * g->cos_half;
+ * fit (tests/runtime/test_airlight_table, OnePanelThetaRuleMatchesDirectQuadrature; tolerance 1e-9). sin w2 = cos(γ/2), cos w2 = sin(γ/2). */
+SLUT_FN int slut_airlight_theta_fits_one_panel(slut_airlight_geometry g) {
+    return (g.kind == 0 && g.tan_dv <= 0.25 * g.w2 && g.c * g.tan_dv <= 4.0 * g.cos_half) ? 1 : 0;
 }
 SLUT_FN double slut_airlight_theta_integral_one_panel(double c, double sin_w2, double cos_w2, double tan_dv) {
     /* The exponents first, then the exps, then the sum: the six divides and the six exp
      * calls are independent and overlap (a loop of exp-then-divide serialises on them). */
-    double half_len = 0.5 * tan_dv, exponent[6], weight[6], sum = 0.0;
+    double half_len = 0.5 * tan_dv, sum = 0.0;
+    double exponent[6];
+    double weight[6];
     for (int k = 0; k < 6; ++k) {
         double x = (k < 3) ? -slut_gl6_x[k] : slut_gl6_x[k - 3];
         double t = half_len * (1.0 + x);
@@ -563,18 +594,18 @@ SLUT_FN double slut_airlight_no_extinction_attenuated(double sigma_s, double sig
 /* scale·ratio (ratio ≥ 0): a product where scale is a normal double, else in logarithms,
  * so that a scale beyond the double range (σ_s·I0 overflowing, e^{−σ_t D} underflowing)
  * still gives the limit: 0, a finite value, or +∞ where the radiance itself overflows. */
-SLUT_FN double slut_airlight_scaled(const slut_airlight_geometry *g, double ratio) {
-    if (g->scale >= SLUT_DBL_MIN_NORMAL && g->scale <= SLUT_DBL_MAX) return g->scale * ratio;
+SLUT_FN double slut_airlight_scaled(slut_airlight_geometry g, double ratio) {
+    if (g.scale >= SLUT_REAL_MIN_NORMAL && g.scale <= SLUT_REAL_MAX) return g.scale * ratio;
     if (!(ratio > 0.0)) return 0.0;
-    return exp(g->log_scale + log(ratio));
+    return exp(g.log_scale + log(ratio));
 }
 
 /* Exact airlight radiance (W/(m²·sr) for I0 in W/sr, coefficients in 1/m, lengths in m)
  * by the θ-integral: independent of any table, ~1e-13 relative. */
-SLUT_FN double slut_airlight_exact(const slut_airlight_geometry *g) {
-    if (g->kind == 1) return 0.0;
-    if (g->kind == 2) return SLUT_HUGE_VAL;
-    return slut_airlight_scaled(g, slut_airlight_theta_integral(g->c, g->w2, g->dv) / g->sin_gamma);
+SLUT_FN double slut_airlight_exact(slut_airlight_geometry g) {
+    if (g.kind == 1) return 0.0;
+    if (g.kind == 2) return SLUT_HUGE_VAL;
+    return slut_airlight_scaled(g, slut_airlight_theta_integral(g.c, g.w2, g.dv) / g.sin_gamma);
 }
 
 /* Radiance from two samples of G̃ (at the viewer end and at the far end), falling back to
@@ -583,13 +614,13 @@ SLUT_FN double slut_airlight_exact(const slut_airlight_geometry *g) {
  * Gauss panels integrate exactly; 8 points per panel, ~1e-13, as the samples of G̃ are
  * table values). gs2 = G̃(u, w2), gs1 = G̃(u, w1); gs1 is unused
  * when w1 = 0 (an infinite ray). */
-SLUT_FN double slut_airlight_from_gs(const slut_airlight_geometry *g, double gs2, double gs1) {
-    if (g->kind == 1) return 0.0;
-    if (g->kind == 2) return SLUT_HUGE_VAL;
-    double viewer_term = (g->w2 / g->sin_gamma) * gs2;
-    double far_term = (g->w1 > 0.0) ? g->far_attenuation * (g->w1 / g->sin_gamma) * gs1 : 0.0;
+SLUT_FN double slut_airlight_from_gs(slut_airlight_geometry g, double gs2, double gs1) {
+    if (g.kind == 1) return 0.0;
+    if (g.kind == 2) return SLUT_HUGE_VAL;
+    double viewer_term = (g.w2 / g.sin_gamma) * gs2;
+    double far_term = (g.w1 > 0.0) ? g.far_attenuation * (g.w1 / g.sin_gamma) * gs1 : 0.0;
     if (far_term <= 0.5 * viewer_term) return slut_airlight_scaled(g, viewer_term - far_term);
-    return slut_airlight_scaled(g, slut_airlight_theta_integral_rule(g->c, g->w2, slut_airlight_dv(g), 0) / g->sin_gamma);
+    return slut_airlight_scaled(g, slut_airlight_theta_integral_rule(g.c, g.w2, slut_airlight_dv(g), 0) / g.sin_gamma);
 }
 
 /* F(u, v) = ∫_0^v e^{−u tan ξ} dξ (Sun et al. 2005) from two tail samples, whole = G(u, 0)

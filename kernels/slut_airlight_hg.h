@@ -181,7 +181,7 @@ SLUT_FN double slut_hg_F_quadrature(double u, double v, double g) {
  * error ≈ |c3| tan⁶w relative to the leading term (e^aE_8 ≤ e^aE_2): ≤ tan⁶w for g ≥ 0
  * (κ ≤ 1: |c3| ≤ 1), but for g < 0 the backward peak (width (1 + g)/(1 − g) in w) makes κ
  * large: ≈ 2.2 (κ tan²w)³, so ≤ 1e-13 needs w ≤ 3e-5 at g = −0.99 and w ≤ 2e-3 at
- * g = −0.5 (measured in tests/test_anisotropic.cpp, SmallWAndLargeUFormsMatchQuadrature).
+ * g = −0.5 (measured in tests/kernels/test_anisotropic.cpp, SmallWAndLargeUFormsMatchQuadrature).
  * g = 0 hands to slut_gs_small_w (today's two terms). */
 SLUT_FN double slut_hg_gs_small_w(double w, double a, double g) {
     if (g == 0.0) return slut_gs_small_w(w, a);

@@ -75,7 +75,7 @@ SLUT_FN double slut_warp_forward(int warp, double p, double p_min, double scale)
  * so its tangent lies above it: one Newton step from any p0 > 0 lands at or below the root,
  * and from below the steps increase monotonically to it (quadratically near it). The start,
  * p0 = e^y for y ≤ ln s + 1 and s·(y − ln s) otherwise, follows the two asymptotes (log and
- * linear). Stops at a relative step ≤ 4e-16; round trip tested in tests/test_nearlight_axes. */
+ * linear). Stops at a relative step ≤ 4e-16; round trip tested in tests/kernels/test_axes.cpp. */
 SLUT_FN double slut_loglin_inverse(double y, double s) {
     double p = (y <= log(s) + 1.0) ? exp(y) : s * (y - log(s));
     for (int k = 0; k < 60; ++k) {
@@ -163,7 +163,7 @@ SLUT_FN double slut_unit_from_warped(const slut_axis *a, double p, double g0, do
 /* The runtime samplers' parameter → unit coordinate: slut_unit_from_warped with the ends
    returned exactly (0 for p ≤ min and NaN, 1 for p ≥ max: the end nodes are hit whatever
    the rounding of the warp there) and LOG1P by Goldberg's form (slut_log1p_goldberg: a log
-   and a divide instead of libm's log1p, within a few ulps of it; tests/test_fastmath). */
+   and a divide instead of libm's log1p, within a few ulps of it; tests/kernels/test_fastmath). */
 SLUT_FN double slut_unit_from_warped_runtime(const slut_axis *a, double p, double g0, double g1) {
     if (!(p > a->min)) return 0.0;
     if (p >= a->max) return 1.0;

@@ -13,7 +13,7 @@
  *   sin, cos of h ∈ [0, π/2]: Taylor series on [0, π/4] to h^17 and h^18 (remainders
  *          ≤ 6e-17 and 2e-18 relative), above it by the complement π/2 − h (π/2 as hi + lo):
  *          9.2 ns for both, against sincos's 17.
- * Both are tested against libm over their domains in tests/test_fastmath.cpp (maximum
+ * Both are tested against libm over their domains in tests/kernels/test_fastmath.cpp (maximum
  * error in ulps, the special points exactly). Compiled as C++ (valid OpenCL C); not part
  * of the GLSL/HLSL snippets.
  */

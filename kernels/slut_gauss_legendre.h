@@ -5,7 +5,7 @@
  * from slut_gauss_legendre and chooses each panel's order with the error constants of
  * slut_gauss_legendre_log_error_constant. The fixed rules the kernels use (slut_gl16_x/w,
  * slut_gl8_x/w, slut_gl6_x/w in slut_airlight.h, 21 digits) agree with these to ≤ 2 ulp
- * (tests/test_quadrature.cpp).
+ * (tests/kernels/test_quadrature.cpp).
  */
 #ifndef SLUT_GAUSS_LEGENDRE_H
 #define SLUT_GAUSS_LEGENDRE_H

@@ -545,7 +545,7 @@ SLUT_FN int slut_nl_E_lanes(double T, double g, double S, const double *r, int l
 /* E(T, g, r, S) = N/H ∈ (0, 1]: see slut_nl_E_lanes. Contract: 1e-10 relative; measured
  * ≤ 2e-14 against a Boost.Math reference on 20000 random points of T ∈ [1e-3, 100],
  * g ∈ [−0.999999, 1], r ∈ {0} ∪ [1e-6, 1e4], S ∈ {∞} ∪ [1e-6, 100]
- * (tests/test_nearlight_math.cpp). ~115 nodes per call on average, ≤ 550 there. */
+ * (tests/kernels/test_nearlight_math.cpp). ~115 nodes per call on average, ≤ 550 there. */
 SLUT_FN double slut_nl_E(double T, double g, double r, double S) {
     double E;
     slut_nl_E_lanes(T, g, S, &r, 1, &E, 1.0);
@@ -691,11 +691,12 @@ SLUT_FN void slut_nl_S_nodes(const slut_axis *a, double T, double g, int first, 
 
 /* ------------------------------------------------------------------ parameters from geometry */
 
+/* SLUT_SHADER_BEGIN (the near-light front-end: also the GLSL/HLSL snippets') */
 #define SLUT_NL_OK 0            /* parameters valid */
 #define SLUT_NL_LIGHT_BELOW 1   /* μ_l < 0: no direct light reaches the medium: radiance 0 */
 #define SLUT_NL_VIEWER_BELOW 2  /* μ_e ≤ 0: the viewer does not see the medium: invalid input */
 
-typedef struct slut_nl_params {
+SLUT_STRUCT_BEGIN(slut_nl_params)
     int kind;         /* SLUT_NL_*                                                      */
     double T;         /* σ_t l (optical distance entry point–light)                     */
     double g;         /* ω·ω_l                                                          */
@@ -704,18 +705,67 @@ typedef struct slut_nl_params {
     double distance_m;/* l, m                                                           */
     double S_over_T;  /* s/l (+∞ for a thick medium): H·T depends on (g, s/l) only      */
     double mu_e, mu_l;
-} slut_nl_params;
+SLUT_STRUCT_END(slut_nl_params);
 
-/* (T, g, r, S) from a geometry in physical units (docs/PHYSICS.md §1.2).
- *   normal:       outward unit normal n of the surface (the medium is below);
- *   eye_dir:      unit vector ω from the entry point O towards the viewer (not into the medium);
- *   light_rel_m:  light position minus O, m;
- *   sigma_t_per_m: extinction σ_t, 1/m;  length_m: path s inside the medium, m (+∞ = thick).
- * T = σ_t |light_rel|, ω_l = light_rel/l, g = ω·ω_l, r = μ_l/μ_e, S = σ_t s.
+/* (T, g, r, S) from a geometry in physical units (docs/PHYSICS.md §1.2), given as the scalars
+ * the vectors below make (the caller forms them: C arrays here, GPU vectors in the snippets):
+ *   l = |light_rel|, mu_e = ω·n, n_dot_l = light_rel·n, e_dot_l = light_rel·ω, with
+ *   n:            outward unit normal of the surface (the medium is below);
+ *   ω:            unit vector from the entry point O towards the viewer (not into the medium;
+ *                 the refracted one where the surface refracts, with mu_e = cos θ_t);
+ *   light_rel:    light position minus O, m;
+ *   sigma_t_per_m: extinction σ_t, 1/m;  length_m: path s inside the medium, m (above
+ *                 SLUT_INFINITE_ABOVE = thick).
+ * T = σ_t l, ω_l = light_rel/l, g = ω·ω_l, r = μ_l/μ_e, S = σ_t s.
  * Sign convention: ĥ² = t² + T² + 2tTg because the point at depth x is O − xω, so
  * P − light = −(x ω + l ω_l). A light in the plane (μ_l = 0, rounding tolerated down to
- * −1e-15) is r = 0 (its whole path runs inside: the r = 0 case of docs/PHYSICS.md §1.2); only a light
- * strictly below the plane gives SLUT_NL_LIGHT_BELOW. */
+ * −SLUT_IN_PLANE_TOLERANCE: 1e-15, float 1e-6) is r = 0 (its whole path runs inside: the
+ * r = 0 case of docs/PHYSICS.md §1.2); only a light strictly below the plane gives
+ * SLUT_NL_LIGHT_BELOW. */
+SLUT_FN slut_nl_params slut_nl_params_from_dots(double l, double mu_e, double n_dot_l, double e_dot_l,
+                                                double sigma_t_per_m, double length_m) {
+    slut_nl_params p;
+    SLUT_CHECK_GE(sigma_t_per_m, 0.0);
+    SLUT_CHECK_GE(length_m, 0.0);
+    p.kind = SLUT_NL_OK;
+    p.distance_m = l;
+    p.mu_e = mu_e;
+    p.mu_l = (l > 0.0) ? n_dot_l / l : 0.0;
+    p.g = (l > 0.0) ? slut_clamp(e_dot_l / l, -1.0, 1.0) : 0.0;
+    p.T = sigma_t_per_m * l;
+    p.S = (length_m > SLUT_INFINITE_ABOVE) ? ((sigma_t_per_m > 0.0) ? SLUT_HUGE_VAL : 0.0) : sigma_t_per_m * length_m;
+    p.S_over_T = (length_m > SLUT_INFINITE_ABOVE) ? SLUT_HUGE_VAL : ((l > 0.0) ? length_m / l : SLUT_HUGE_VAL);
+    p.r = 0.0;
+    if (!(mu_e > 0.0)) {
+        p.kind = SLUT_NL_VIEWER_BELOW;
+        return p;
+    }
+    if (p.mu_l < -SLUT_IN_PLANE_TOLERANCE) {
+        p.kind = SLUT_NL_LIGHT_BELOW;
+        return p;
+    }
+    p.r = fmax(p.mu_l, 0.0) / mu_e;
+    return p;
+}
+
+/* Near-light radiance from E, W/(m²·sr) for I0 in W/sr, coefficients in 1/m, lengths in m:
+ *   L = transmittance · σ_s/(4π) · I0 · E · (T·H)/l,
+ * the form finite as σ_t → 0 (T·H depends on g and s/l only); transmittance is the exit's
+ * Fresnel factor (1 without one). 0 without light (kind ≠ SLUT_NL_OK, σ_s = 0, I0 = 0,
+ * s = 0); +∞ where H diverges (the ray runs through the light) or the light sits at O. */
+SLUT_FN double slut_nl_assemble(slut_nl_params p, double sigma_s_per_m, double intensity_w_sr, double length_m,
+                                double transmittance, double E) {
+    if (p.kind != SLUT_NL_OK || !(sigma_s_per_m > 0.0) || !(intensity_w_sr > 0.0) || !(length_m > 0.0))
+        return 0.0;
+    if (!(p.distance_m > 0.0)) return SLUT_HUGE_VAL;
+    double H_scaled = slut_nl_H_scaled(p.g, p.S_over_T);
+    if (!SLUT_ISFINITE(H_scaled)) return SLUT_HUGE_VAL;
+    return transmittance * sigma_s_per_m * SLUT_INV_4PI * intensity_w_sr * E * H_scaled / p.distance_m;
+}
+/* SLUT_SHADER_END */
+
+/* slut_nl_params_from_dots from the vectors (3-element arrays): normal n, eye_dir ω,
+ * light_rel_m (see there). */
 SLUT_FN void slut_nl_params_from_geometry(const double *normal, const double *eye_dir,
                                           const double *light_rel_m, double sigma_t_per_m,
                                           double length_m, slut_nl_params *p) {
@@ -724,20 +774,7 @@ SLUT_FN void slut_nl_params_from_geometry(const double *normal, const double *ey
     double mu_e = eye_dir[0] * normal[0] + eye_dir[1] * normal[1] + eye_dir[2] * normal[2];
     double n_dot_l = light_rel_m[0] * normal[0] + light_rel_m[1] * normal[1] + light_rel_m[2] * normal[2];
     double e_dot_l = light_rel_m[0] * eye_dir[0] + light_rel_m[1] * eye_dir[1] + light_rel_m[2] * eye_dir[2];
-    SLUT_CHECK_GE(sigma_t_per_m, 0.0);
-    SLUT_CHECK_GE(length_m, 0.0);
-    p->kind = SLUT_NL_OK;
-    p->distance_m = l;
-    p->mu_e = mu_e;
-    p->mu_l = (l > 0.0) ? n_dot_l / l : 0.0;
-    p->g = (l > 0.0) ? slut_clamp(e_dot_l / l, -1.0, 1.0) : 0.0;
-    p->T = sigma_t_per_m * l;
-    p->S = (length_m > 1e300) ? ((sigma_t_per_m > 0.0) ? SLUT_HUGE_VAL : 0.0) : sigma_t_per_m * length_m;
-    p->S_over_T = (length_m > 1e300) ? SLUT_HUGE_VAL : ((l > 0.0) ? length_m / l : SLUT_HUGE_VAL);
-    p->r = 0.0;
-    if (!(mu_e > 0.0)) { p->kind = SLUT_NL_VIEWER_BELOW; return; }
-    if (p->mu_l < -1e-15) { p->kind = SLUT_NL_LIGHT_BELOW; return; }
-    p->r = fmax(p->mu_l, 0.0) / mu_e;
+    *p = slut_nl_params_from_dots(l, mu_e, n_dot_l, e_dot_l, sigma_t_per_m, length_m);
 }
 
 /* Exact near-light radiance, W/(m²·sr) for I0 in W/sr, coefficients in 1/m, lengths in m:
@@ -750,13 +787,11 @@ SLUT_FN double slut_nl_radiance_exact(double sigma_s_per_m, double sigma_a_per_m
     slut_nl_params p;
     double sigma_t = sigma_s_per_m + sigma_a_per_m;
     slut_nl_params_from_geometry(normal, eye_dir, light_rel_m, sigma_t, length_m, &p);
-    if (p.kind != SLUT_NL_OK || !(sigma_s_per_m > 0.0) || !(intensity_w_sr > 0.0) || !(length_m > 0.0))
-        return 0.0;
-    if (!(p.distance_m > 0.0)) return SLUT_HUGE_VAL;
-    double H_scaled = slut_nl_H_scaled(p.g, p.S_over_T);
-    if (!SLUT_ISFINITE(H_scaled)) return SLUT_HUGE_VAL;
-    double E = (p.T > 0.0) ? slut_nl_E(p.T, p.g, p.r, p.S) : 1.0;
-    return sigma_s_per_m * SLUT_INV_4PI * intensity_w_sr * E * H_scaled / p.distance_m;
+    /* E only where the assembly uses it (the zero limits and T = 0 need none: E(0, ...) = 1). */
+    if (p.kind != SLUT_NL_OK || !(sigma_s_per_m > 0.0) || !(intensity_w_sr > 0.0) || !(length_m > 0.0) ||
+        !(p.distance_m > 0.0) || !(p.T > 0.0))
+        return slut_nl_assemble(p, sigma_s_per_m, intensity_w_sr, length_m, 1.0, 1.0);
+    return slut_nl_assemble(p, sigma_s_per_m, intensity_w_sr, length_m, 1.0, slut_nl_E(p.T, p.g, p.r, p.S));
 }
 
 /* ------------------------------------------------------------------ eye-side refraction */

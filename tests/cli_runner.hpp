@@ -57,4 +57,17 @@ inline std::vector<nlohmann::json> json_lines(const std::string &text) {
     return out;
 }
 
+// The default scene's tables at a small airlight resolution (--n-u 128 --n-w 64), generated
+// once per test process into a temporary folder; a failed generate fails the calling test.
+inline const std::string &small_generated_tables_dir() {
+    static const std::string dir = [] {
+        const std::string d = temp_stem("tables") + "_tables";
+        std::filesystem::remove_all(d);
+        const RunResult gen = run_scatterlut("generate --out " + d + " --n-u 128 --n-w 64");
+        EXPECT_EQ(gen.exit_code, 0) << gen.out;
+        return d;
+    }();
+    return dir;
+}
+
 } // namespace slut_test

@@ -9,6 +9,8 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "scatterlut/airlight_hg.hpp"
+#include "scatterlut/anisotropic.hpp"
 #include "scatterlut/io.hpp"
 
 namespace scatterlut {
@@ -40,6 +42,113 @@ void note_non_finite(nlohmann::json &out) {
 }
 
 
+// ------------------------------------------------ phase_g and per-channel coefficients
+// "airlight" and "near_light" queries may carry "phase_g" (Henyey–Greenstein asymmetry,
+// default 0) and sigma_s / sigma_a as arrays of 3 (r, g, b). Each channel is one scalar
+// query (the integrals are dimensionless in σ_t times a length, so one table serves every
+// channel); with arrays, every answer field is an array of 3. phase_g = 0 with numbers is
+// exactly the isotropic answer of the kind (the same code).
+
+bool is_medium_quantity(const std::string &quantity) { return quantity == "airlight" || quantity == "near_light"; }
+
+// The query's phase_g (0 when absent); std::invalid_argument when not a number or out of range.
+double eval_phase_g(const nlohmann::json &q) {
+    if (!q.contains("phase_g")) return 0.0;
+    if (!q.at("phase_g").is_number()) throw std::invalid_argument("field \"phase_g\" must be a number");
+    const double g = q.at("phase_g").get<double>();
+    if (!(std::isfinite(g) && std::fabs(g) <= 0.999999))
+        throw std::invalid_argument("field \"phase_g\" (Henyey-Greenstein asymmetry) must lie in [-0.999999, 0.999999]");
+    return g;
+}
+
+// A coefficient field: a number (every channel) or an array of exactly 3 numbers.
+Rgb eval_channels(const nlohmann::json &q, const char *name) {
+    if (q.contains(name) && q.at(name).is_array()) {
+        Rgb c{};
+        eval_vector_field(q, name, c.data());
+        return c;
+    }
+    const double x = eval_number_field(q, name);
+    return {x, x, x};
+}
+
+// The anisotropic airlight (phase_g ≠ 0) of one channel: exact by quadrature (anisotropic.hpp),
+// the table from a loaded anisotropic airlight table of the same g.
+void answer_airlight_phase(const nlohmann::json &q, double phase_g, nlohmann::json &out, const EvalTables &tables) {
+    const AirlightQuery a = eval_airlight_query(q);
+    eval_put(out, "exact", airlight_radiance_exact(a, phase_g)); // validates the query
+    if (a.gamma_rad == 0.0 && a.length_m >= a.distance_m) out["note"] = "diverges: the view ray passes through the light";
+    // A table answers only a query of its own g (it covers every u and w: asymptotic forms beyond its axes).
+    const AirlightHgTable *table =
+        first_runtime<AirlightHgTable>(tables.samplers, [&](const AirlightHgTable &t) { return t.serves(phase_g); });
+    if (table) eval_put(out, "table", table->radiance(a));
+    else out["table"] = nullptr;
+}
+
+// The anisotropic near light (phase_g ≠ 0) of one channel: exact by quadrature. The thin-medium
+// and distant-light forms of near_light queries are isotropic: not given for phase_g ≠ 0.
+void answer_near_light_phase(const nlohmann::json &q, double phase_g, nlohmann::json &out) {
+    const NearLightQuery n = eval_near_light_query(q);
+    eval_put(out, "exact", near_light_radiance_exact(n, phase_g)); // validates the query
+    out["table"] = nullptr; // no loaded table has this g
+}
+
+// One channel's answer fields (those not in the query), with its note for non-finite values.
+nlohmann::json channel_answer(const RuntimeKind &kind, const std::string &quantity, const nlohmann::json &query,
+                              double sigma_s, double sigma_a, double phase_g, const EvalTables &tables) {
+    nlohmann::json q = query;
+    q["sigma_s"] = sigma_s;
+    q["sigma_a"] = sigma_a;
+    q.erase("phase_g");
+    nlohmann::json out = nlohmann::json::object();
+    if (phase_g == 0.0) kind.answer_eval(quantity, q, out, tables);
+    else if (quantity == "airlight") answer_airlight_phase(q, phase_g, out, tables);
+    else answer_near_light_phase(q, phase_g, out);
+    note_non_finite(out);
+    return out;
+}
+
+// Answers a medium query with phase_g and/or per-channel coefficients into `out`.
+void answer_medium_query(const RuntimeKind &kind, const std::string &quantity, const nlohmann::json &query,
+                         nlohmann::json &out, const EvalTables &tables) {
+    const double phase_g = eval_phase_g(query);
+    const bool rgb = (query.contains("sigma_s") && query.at("sigma_s").is_array()) ||
+                     (query.contains("sigma_a") && query.at("sigma_a").is_array());
+    const Rgb sigma_s = eval_channels(query, "sigma_s"), sigma_a = eval_channels(query, "sigma_a");
+    if (!rgb) {
+        const nlohmann::json a = channel_answer(kind, quantity, query, sigma_s[0], sigma_a[0], phase_g, tables);
+        for (auto it = a.begin(); it != a.end(); ++it) out[it.key()] = it.value();
+        return;
+    }
+    nlohmann::json channels[3];
+    for (int c = 0; c < 3; ++c)
+        channels[c] = channel_answer(kind, quantity, query, sigma_s[c], sigma_a[c], phase_g, tables);
+    // Every answer field as [r, g, b] (null where a channel has none); notes joined per channel.
+    std::vector<std::string> fields;
+    for (const auto &a : channels)
+        for (auto it = a.begin(); it != a.end(); ++it)
+            if (it.key() != "note" && std::find(fields.begin(), fields.end(), it.key()) == fields.end())
+                fields.push_back(it.key());
+    for (const std::string &f : fields) {
+        nlohmann::json v = nlohmann::json::array();
+        for (const auto &a : channels) v.push_back(a.contains(f) ? a[f] : nlohmann::json(nullptr));
+        out[f] = v;
+    }
+    static const char *const kChannel[3] = {"r", "g", "b"};
+    std::string note;
+    const bool same = channels[0].value("note", "") == channels[1].value("note", "") &&
+                      channels[1].value("note", "") == channels[2].value("note", "");
+    for (int c = 0; c < 3; ++c) {
+        if (!channels[c].contains("note")) continue;
+        if (same) {
+            note = channels[c]["note"].get<std::string>();
+            break;
+        }
+        note += (note.empty() ? "" : "; ") + std::string(kChannel[c]) + ": " + channels[c]["note"].get<std::string>();
+    }
+    if (!note.empty()) out["note"] = note;
+}
+
 } // namespace
 
 double eval_number_field(const nlohmann::json &q, const char *name) {
@@ -60,6 +169,34 @@ void eval_put(nlohmann::json &out, const char *name, double value) {
     }
     out[name] = nullptr;
     out[kNonFiniteKey].push_back({name, std::isnan(value) ? "nan" : value > 0 ? "+inf" : "-inf"});
+}
+
+AirlightQuery eval_airlight_query(const nlohmann::json &q) {
+    AirlightQuery a;
+    a.sigma_s_per_m = eval_number_field(q, "sigma_s");
+    a.sigma_a_per_m = eval_number_field(q, "sigma_a");
+    a.intensity_W_per_sr = eval_number_field(q, "intensity");
+    a.distance_m = eval_number_field(q, "distance");
+    a.gamma_rad = eval_number_field(q, "gamma");
+    a.length_m = eval_number_field(q, "length");
+    return a;
+}
+
+NearLightQuery eval_near_light_query(const nlohmann::json &q) {
+    NearLightQuery n;
+    n.sigma_s_per_m = eval_number_field(q, "sigma_s");
+    n.sigma_a_per_m = eval_number_field(q, "sigma_a");
+    n.intensity_W_per_sr = eval_number_field(q, "intensity");
+    eval_vector_field(q, "normal", n.normal);
+    eval_vector_field(q, "eye_dir", n.eye_dir);
+    eval_vector_field(q, "light_pos", n.light_rel_m);
+    n.length_m = eval_number_field(q, "length");
+    if (q.contains("eta")) n.eta = eval_number_field(q, "eta");
+    if (q.contains("fresnel")) {
+        if (!q.at("fresnel").is_boolean()) throw std::invalid_argument("field \"fresnel\" must be true or false");
+        n.fresnel = q.at("fresnel").get<bool>();
+    }
+    return n;
 }
 
 void eval_vector_field(const nlohmann::json &q, const char *name, double *out) {
@@ -100,6 +237,19 @@ nlohmann::json eval_query(const nlohmann::json &query, const EvalTables &tables)
         }
     }
     if (!answering) throw std::invalid_argument("unknown quantity \"" + quantity + "\" (expected " + list + ")");
+    if (!is_medium_quantity(quantity)) {
+        if (query.contains("phase_g"))
+            throw std::invalid_argument("field \"phase_g\" applies to airlight and near_light queries only");
+        answering->answer_eval(quantity, query, out, tables);
+        note_non_finite(out);
+        return out;
+    }
+    const bool plain = !query.contains("phase_g") && !(query.contains("sigma_s") && query.at("sigma_s").is_array()) &&
+                       !(query.contains("sigma_a") && query.at("sigma_a").is_array());
+    if (!plain) {
+        answer_medium_query(*answering, quantity, query, out, tables);
+        return out;
+    }
     answering->answer_eval(quantity, query, out, tables);
     note_non_finite(out);
     return out;

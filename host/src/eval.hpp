@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "kinds/runtime_kind.hpp"
+#include "scatterlut/airlight.hpp"
+#include "scatterlut/nearlight.hpp"
 #include "scatterlut/table.hpp"
 
 namespace scatterlut {
@@ -31,6 +33,10 @@ double eval_number_field(const nlohmann::json &q, const char *name);
 void eval_vector_field(const nlohmann::json &q, const char *name, double *out);
 // Puts a number into an answer; a non-finite one is null, with a note eval_query adds.
 void eval_put(nlohmann::json &out, const char *name, double value);
+// The physical query of an "airlight" / "near_light" line (fields as docs say; eta and fresnel
+// optional). Throws std::invalid_argument naming the field that is missing or not a number.
+AirlightQuery eval_airlight_query(const nlohmann::json &q);
+NearLightQuery eval_near_light_query(const nlohmann::json &q);
 
 // Answers one parsed query: the query's fields plus the answer fields. Throws
 // std::invalid_argument with a message for a malformed query.

@@ -17,6 +17,7 @@
 
 extern "C" {
 #include "slut_airlight.h"
+#include "slut_airlight_hg.h"
 #include "slut_gauss_legendre.h"
 }
 
@@ -88,18 +89,28 @@ double log_gl_error_constant(int m) {
 // ~4e3 × the panel bound (at bounds 1e-10 … 1e-8; the pole term takes the ellipse through
 // the pole, where the integrand is unbounded, so it is optimistic), and 1e-4 keeps every
 // rung of the tolerance ladder 1e-3 … 1e-13 within its tolerance (`scatterlut report`,
-// tests/test_report.cpp).
+// tests/commands/test_report.cpp).
 constexpr double kPanelShareOfTolerance = 1e-4;
 
 // Everything panel_order needs that does not change along one interval.
+// beta2: the squared distance from the real axis of the integrand's nearest singularities
+// (y = −τ ± i·β): 1 for the Lorentzian (g = 0); for the Henyey–Greenstein integrand k_g
+// (kernels/slut_airlight_hg.h) β = min(1, (1 − g)/(1 + g)), the forward peak's width.
 struct IntervalBounds {
-    double tau, log_ell, log_inv_ell, u_split, log_u_split, u_max, log_u_max, eps, log_eps;
+    double tau, log_ell, log_inv_ell, u_split, log_u_split, u_max, log_u_max, eps, log_eps, beta2;
 };
 
-IntervalBounds interval_bounds(double tau, double ell, double u_max, double panel_eps) {
+IntervalBounds interval_bounds(double tau, double ell, double u_max, double panel_eps, double beta2) {
     const double u_split = std::min(1.0 / ell, u_max);
     return {tau,           std::log(ell), -std::log(ell), u_split, std::log(u_split), u_max, std::log(u_max),
-            panel_eps, std::log(panel_eps)};
+            panel_eps, std::log(panel_eps), beta2};
+}
+
+// β² of the integrand of asymmetry g (IntervalBounds): exactly 1.0 for g = 0.
+double singularity_beta2(double g) {
+    if (g <= 0.0) return 1.0;
+    const double beta = (1.0 - g) / (1.0 + g);
+    return beta * beta;
 }
 
 int panel_order(double a, double h, const IntervalBounds &b) {
@@ -112,7 +123,8 @@ int panel_order(double a, double h, const IntervalBounds &b) {
     // ρ = α + √(α² − 1), α = (sum of the distances to the ends)/h. Order m holds it to
     // eps when ρ^{2m} ≥ 64/(15(ρ² − 1) eps): powers of ρ² instead of logarithms (this
     // runs ~10³ times per table).
-    const double alpha = (std::sqrt((b.tau + a) * (b.tau + a) + 1.0) + std::sqrt((b.tau + a + h) * (b.tau + a + h) + 1.0)) / h;
+    const double alpha =
+        (std::sqrt((b.tau + a) * (b.tau + a) + b.beta2) + std::sqrt((b.tau + a + h) * (b.tau + a + h) + b.beta2)) / h;
     const double rho = alpha + std::sqrt(alpha * alpha - 1.0), rho2 = rho * rho;
     const double pole_needs = 64.0 / (15.0 * (rho2 - 1.0) * b.eps);
     double rho_2m = rho2 * rho2; // m = 2
@@ -144,11 +156,14 @@ int panel_order(double a, double h, const IntervalBounds &b) {
 // for every u; the first panel keeps the poles at y = −τ ± i a panel length away), each
 // panel at the lowest order panel_order allows. Weights carry the Lorentzian
 // 1/(1 + (τ + y)²), so the kernel forms Σ W e^{−u y}. Appends to y and weight.
+// g ≠ 0: the weights carry the Henyey–Greenstein integrand k_g(τ + y) (slut_hg_air_kernel)
+// instead, and the singularities sit at y = −τ ± iβ (IntervalBounds).
 void append_interval_rule(double tau, double end, double u_cap, double panel_eps, std::vector<double> &y,
-                          std::vector<double> &weight) {
-    const double pole_distance = std::sqrt(tau * tau + 1.0); // |τ + i|: the poles at y = −τ ± i
+                          std::vector<double> &weight, double g = 0.0) {
+    const double beta2 = singularity_beta2(g);
+    const double pole_distance = std::sqrt(tau * tau + beta2); // |τ + iβ|: the poles at y = −τ ± iβ
     const double h0 = std::min(14.0 / u_cap, pole_distance);
-    const IntervalBounds bounds = interval_bounds(tau, std::min(end, pole_distance), u_cap, panel_eps);
+    const IntervalBounds bounds = interval_bounds(tau, std::min(end, pole_distance), u_cap, panel_eps, beta2);
     for (double a = 0; a < end;) {
         double h = (a == 0) ? h0 : a;
         if (a + h >= end || end - (a + h) < 0.25 * h) h = end - a; // no sliver at the end
@@ -158,7 +173,8 @@ void append_interval_rule(double tau, double end, double u_cap, double panel_eps
         for (size_t k = 0; k < rule.x.size(); ++k) {
             const double yk = a + 0.5 * h * (1.0 + rule.x[k]), ty = tau + yk;
             y.push_back(yk);
-            weight.push_back(0.5 * h * rule.w[k] / (1.0 + ty * ty));
+            if (g == 0.0) weight.push_back(0.5 * h * rule.w[k] / (1.0 + ty * ty));
+            else weight.push_back(0.5 * h * rule.w[k] * slut_hg_air_kernel(g, 1.0, ty));
         }
         a = (h == end - a) ? end : a + h; // the last panel ends exactly at the end
     }
@@ -176,7 +192,8 @@ struct RuleSet {
 constexpr double kDroppedEfolds = 40.0; // e^{−40} ≈ 4e-18 of the interval's first term
 
 RuleSet sweep_rule_set(const std::vector<double> &tau, const std::vector<double> &delta,
-                       const std::vector<double> &series_u_min, double u_lo, double u_cap, double panel_eps) {
+                       const std::vector<double> &series_u_min, double u_lo, double u_cap, double panel_eps,
+                       double g = 0.0) {
     RuleSet s;
     const int n_w = static_cast<int>(tau.size());
     const double y_cut = kDroppedEfolds / u_lo;
@@ -185,7 +202,7 @@ RuleSet sweep_rule_set(const std::vector<double> &tau, const std::vector<double>
         s.begin.push_back(static_cast<int>(s.y.size()));
         if (u_lo >= series_u_min[k]) continue; // every item of the set uses the series
         if (j > 0 && u_cap * delta[k] <= 2.0 * SLUT_GS_TAYLOR_X) continue; // every item uses the moments
-        append_interval_rule(tau[k], (j > 0) ? std::min(delta[k], y_cut) : y_cut, u_cap, panel_eps, s.y, s.weight);
+        append_interval_rule(tau[k], (j > 0) ? std::min(delta[k], y_cut) : y_cut, u_cap, panel_eps, s.y, s.weight, g);
     }
     s.begin.push_back(static_cast<int>(s.y.size()));
     return s;
@@ -194,7 +211,8 @@ RuleSet sweep_rule_set(const std::vector<double> &tau, const std::vector<double>
 // The Taylor moments m_jk = ((−1)^k/k!) Σ_n W_n (y_n − Δ_j/2)^k, k < SLUT_GS_TAYLOR_TERMS,
 // of each interval j ≥ 1 (slut_airlight.h), from its rule for every u ≤ 2·SLUT_GS_TAYLOR_X/Δ_j
 // (the rows that use them); zero for j = 0, which has no end.
-std::vector<double> taylor_moments(const std::vector<double> &tau, const std::vector<double> &delta, double panel_eps) {
+std::vector<double> taylor_moments(const std::vector<double> &tau, const std::vector<double> &delta, double panel_eps,
+                                   double g = 0.0) {
     constexpr size_t K = SLUT_GS_TAYLOR_TERMS;
     static const std::array<double, K> kInverse = [] { // 1/(k + 1)
         std::array<double, K> v{};
@@ -205,7 +223,7 @@ std::vector<double> taylor_moments(const std::vector<double> &tau, const std::ve
     for (size_t j = 1; j < tau.size(); ++j) {
         y.clear();
         weight.clear();
-        append_interval_rule(tau[j], delta[j], 2.0 * SLUT_GS_TAYLOR_X / delta[j], panel_eps, y, weight);
+        append_interval_rule(tau[j], delta[j], 2.0 * SLUT_GS_TAYLOR_X / delta[j], panel_eps, y, weight, g);
         double *mj = &m[j * K];
         const double centre = 0.5 * delta[j];
         for (size_t n = 0; n < y.size(); ++n) {
@@ -220,9 +238,10 @@ std::vector<double> taylor_moments(const std::vector<double> &tau, const std::ve
     return m;
 }
 
-} // namespace
-
-std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout, double tolerance) {
+// The sweep for the integrand of asymmetry g (0: the Lorentzian, kernels/airlight_F.cl; g ≠ 0:
+// k_g, kernels/airlight_Fg.cl, without the large-u series, whose coefficients are the
+// Lorentzian's: the rule sets resolve the layer at every u instead).
+std::vector<double> integrate_sweep(Device &device, const Table &layout, double tolerance, double g) {
     const double panel_eps = kPanelShareOfTolerance * tolerance;
     const slut_axis &au = layout.axes[0].map;
     const slut_axis &aw = layout.axes[1].map;
@@ -253,7 +272,7 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
     double u_lo_max = 0; // the largest lane-0 u of any work-item
     for (int k = 0; k < items; ++k) u_lo_max = std::max(u_lo_max, u_rows[static_cast<size_t>(kLanes * k)]);
     for (size_t k = 0; k < w_nodes.size(); ++k) {
-        series_u_min[k] = slut_gs_series_u_min(w_nodes[k]);
+        series_u_min[k] = (g == 0.0) ? slut_gs_series_u_min(w_nodes[k]) : HUGE_VAL;
         if (u_lo_max >= series_u_min[k]) slut_gs_large_u_coefficients(w_nodes[k], &series_coef[k * SLUT_GS_SERIES_TERMS]);
     }
 
@@ -282,12 +301,13 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
         double &lo = set_u_lo[static_cast<size_t>(item_set[static_cast<size_t>(k)])];
         lo = std::min(lo, std::max(u_rows[static_cast<size_t>(kLanes * k)], u_min_positive));
     }
-    const std::vector<double> moments = taylor_moments(tau, delta, panel_eps);
+    const std::vector<double> moments = taylor_moments(tau, delta, panel_eps, g);
     // One thread: ~0.2 ms at 257², ~0.3 ms at 1025²; threads started per call made it
     // slower and erratic on a loaded 2-core machine (0.2–3 ms).
     std::vector<RuleSet> sets(set_cap.size());
     for (size_t k = 0; k < sets.size(); ++k)
-        if (set_u_lo[k] < HUGE_VAL) sets[k] = sweep_rule_set(tau, delta, series_u_min, set_u_lo[k], set_cap[k], panel_eps);
+        if (set_u_lo[k] < HUGE_VAL)
+            sets[k] = sweep_rule_set(tau, delta, series_u_min, set_u_lo[k], set_cap[k], panel_eps, g);
     std::vector<double> node_y, node_weight;
     std::vector<int> node_begin;
     for (RuleSet &set : sets) {
@@ -297,8 +317,9 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
         node_weight.insert(node_weight.end(), set.weight.begin(), set.weight.end());
     }
 
-    cl::Program &program = device.program("airlight_F.cl");
-    cl::Kernel kernel(program, "airlight_ln_gs_sweep");
+    const char *file = (g == 0.0) ? "airlight_F.cl" : "airlight_Fg.cl";
+    cl::Program &program = device.program(file);
+    cl::Kernel kernel(program, (g == 0.0) ? "airlight_ln_gs_sweep" : "airlight_hg_ln_gs_sweep");
     std::vector<double> values(static_cast<size_t>(au.count) * static_cast<size_t>(aw.count));
     // The launch shape the kernel indexes by: one work-item per kLanes rows, a rule set and
     // its per-interval node ranges for each item.
@@ -318,13 +339,41 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
     kernel.setArg(arg++, out);
     kernel.setArg(arg++, au.count);
     kernel.setArg(arg++, aw.count);
-    for (const cl::Buffer *b : {&b_u, &b_w, &b_delta, &b_set, &b_begin, &b_y, &b_weight, &b_series_u, &b_series_c, &b_moments})
-        kernel.setArg(arg++, *b);
+    if (g == 0.0) {
+        for (const cl::Buffer *b : {&b_u, &b_w, &b_delta, &b_set, &b_begin, &b_y, &b_weight, &b_series_u, &b_series_c, &b_moments})
+            kernel.setArg(arg++, *b);
+    } else { // no series (airlight_Fg.cl)
+        for (const cl::Buffer *b : {&b_u, &b_w, &b_delta, &b_set, &b_begin, &b_y, &b_weight, &b_moments})
+            kernel.setArg(arg++, *b);
+    }
     // Few, heavy work-items: a small local size spreads them over the cores (docs/POCL.md).
     device.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(static_cast<size_t>(items)), cl::NDRange(1));
     wait_for_output(device, out, values);
-    device.kernels_ran("airlight_F.cl");
+    device.kernels_ran(file);
+    if (g != 0.0) {
+        // The rows u = 0: G̃_g(0, w) is the mean of ψ_g, not 1. The recurrence at u = 0 is
+        // S_j = m_j0 + S_{j−1} (m_j0 = Σ W over interval j's whole rule: its Taylor moment 0),
+        // from S_0 = ∫_0^∞ k_g(τ_0 + y) dy by the panel rule of slut_airlight_hg.h. All terms
+        // positive: no cancellation.
+        double S = slut_hg_w_gs_quadrature(0.0, w_nodes[0], g, 1.0);
+        for (size_t j = 0; j < w_nodes.size(); ++j) {
+            if (j > 0) S += moments[j * SLUT_GS_TAYLOR_TERMS];
+            for (int i = 0; i < au.count && u_rows[static_cast<size_t>(i)] == 0.0; ++i)
+                values[j * static_cast<size_t>(au.count) + static_cast<size_t>(i)] = std::log(S / w_nodes[j]);
+        }
+    }
     return values;
+}
+
+} // namespace
+
+std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout, double tolerance) {
+    return integrate_sweep(device, layout, tolerance, 0.0);
+}
+
+std::vector<double> integrate_airlight_hg_ln_gs_sweep(Device &device, const Table &layout, double tolerance,
+                                                      double phase_g) {
+    return integrate_sweep(device, layout, tolerance, phase_g);
 }
 
 Table generate_airlight_table(Device &device, const AirlightPlan &plan, const Provenance &provenance,

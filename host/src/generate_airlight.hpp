@@ -39,6 +39,12 @@ Table make_airlight_table_layout(const AirlightPlan &plan);
 std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout,
                                              double tolerance = kAirlightIntegrationTolerance);
 
+// The same sweep with the Henyey–Greenstein integrand of asymmetry phase_g ≠ 0
+// (kernels/airlight_Fg.cl; no large-u series): ln G̃_g at every node of `layout` (the rows
+// u = 0 by the same recurrence at u = 0, on the host).
+std::vector<double> integrate_airlight_hg_ln_gs_sweep(Device &device, const Table &layout, double tolerance,
+                                                      double phase_g);
+
 // Integrates every node on the device and measures the table's accuracy on the host.
 // progress(fraction done) may be empty.
 Table generate_airlight_table(Device &device, const AirlightPlan &plan, const Provenance &provenance,

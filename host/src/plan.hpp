@@ -50,9 +50,13 @@ struct PlannedTable {
     bool reached = false; // the chosen trial meets target_rel
     std::string verdict;  // one line: how the search ended
     Table table;          // the chosen trial's table (after resolve_plan)
+    // Per-phase kinds (TableKind::per_phase): the table's g and its file stem; empty stem:
+    // the kind's name.
+    double phase_g = 0.0;
+    std::string stem;
 
     const PlanTrial *chosen_trial() const { return chosen >= 0 ? &trials[static_cast<size_t>(chosen)] : nullptr; }
-    const char *name() const { return kind->name(); }
+    const char *name() const { return stem.empty() ? kind->name() : stem.c_str(); }
     template <class P> P &plan_as() { return std::any_cast<P &>(plan); }
     template <class P> const P &plan_as() const { return std::any_cast<const P &>(plan); }
 };

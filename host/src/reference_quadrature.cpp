@@ -117,3 +117,28 @@ double reference_near_light_E(double T_in, double g_in, double r_in, double S_in
 }
 
 } // namespace scatterlut
+
+namespace scatterlut {
+
+double reference_scaled_tail_hg(double u_in, double w_in, double g_in) {
+    if (g_in == 0.0) return reference_scaled_tail(u_in, w_in);
+    const real u = u_in, w = w_in, g = g_in;
+    const real tau = std::cos(w) / std::sin(w);
+    // Scales: the peak (1 − g)/(1 + g) in t (g > 0) or (1 + g)/(1 − g) (g < 0: the backward
+    // peak in ξ as t grows), the decay 1/(1 + τ) of the tail, e^{−u y} over 1/u.
+    const real peak = g > 0 ? (1 - g) / (1 + g) : (1 + g) / (1 - g);
+    const real decay = u > 0 ? 1 / u : std::numeric_limits<real>::infinity();
+    std::vector<real> breaks;
+    const real smallest = std::min(std::min(peak, 1 + tau), decay) / 64;
+    const real largest = u > 0 ? 48 * decay : 64 * (1 + tau) / std::min(peak, real(1));
+    geometric(breaks, smallest, largest);
+    auto f = [=](real y) {
+        const real t = tau + y, gm = 1 - g, gp = 1 + g;
+        const real q = gm * gm + gp * gp * t * t;
+        return std::exp(-u * y) * gm * gp * std::sqrt(1 + t * t) / (q * std::sqrt(q));
+    };
+    const real integral = integrate(f, breaks, std::numeric_limits<real>::infinity(), u > 0 ? decay : 0);
+    return static_cast<double>(integral / w);
+}
+
+} // namespace scatterlut

@@ -19,3 +19,12 @@ double reference_scaled_tail(double u, double w);
 double reference_near_light_E(double T, double g, double r, double S, double phase_g = 0.0);
 
 } // namespace scatterlut
+
+namespace scatterlut {
+
+// G̃_g(u, w) = (1/w) ∫_0^∞ e^{−u y} k_g(τ + y) dy, τ = cot w, with the Henyey–Greenstein
+// integrand k_g(t) = (1 − g²)√(1 + t²)/((1 − g)² + (1 + g)² t²)^{3/2} (kernels/slut_airlight_hg.h),
+// break points also at the forward peak's scale (1 − g)/(1 + g). g = 0: reference_scaled_tail.
+double reference_scaled_tail_hg(double u, double w, double g);
+
+} // namespace scatterlut

@@ -25,6 +25,10 @@ namespace {
 
 const char *const kLengthExpected = "a length in [1e-6, 1e6] m";
 const char *const kSigmaExpected = "a coefficient in [0, 1e6] (1/m)";
+const char *const kSigmaOrRgbExpected = "a coefficient in [0, 1e6] (1/m) or an [r, g, b] triple of them";
+const char *const kPhaseGExpected =
+    "a Henyey-Greenstein asymmetry g in [-0.99, 0.99] (0 isotropic, > 0 forward; beyond 0.99 the forward peak "
+    "is too narrow to tabulate)";
 const char *const kRelativeErrorExpected =
     "a relative error on radiance in [1e-9, 0.5] (double-precision quadrature and storage reach ~1e-10)";
 
@@ -110,6 +114,27 @@ public:
         return n->value<bool>().value_or(false);
     }
 
+    // A coefficient as a number (every channel) or an [r, g, b] triple, each in [0, hi].
+    std::array<double, 3> number_or_rgb(const toml::table &t, const char *key, const std::string &path, double hi,
+                                        const std::string &expect) const {
+        const toml::node *n = t.get(key);
+        if (!n) fail(t.source(), join(path, key), "expected " + expect + " (missing)");
+        if (const toml::array *a = n->as_array()) {
+            if (a->size() != 3)
+                fail(n->source(), join(path, key),
+                     "expected " + expect + ", got an array of " + std::to_string(a->size()) + " values");
+            std::array<double, 3> rgb{};
+            for (size_t c = 0; c < 3; ++c)
+                rgb[c] = number_value(*a->get(c), join(path, key) + "[" + std::to_string(c) + "]", 0.0, false, hi,
+                                      kSigmaExpected);
+            return rgb;
+        }
+        // A single number keeps the grey medium's message (the triple is named when an array is wrong).
+        const double x = number_value(*n, join(path, key), 0.0, false, hi,
+                                      n->is_number() ? kSigmaExpected : expect);
+        return {x, x, x};
+    }
+
     // [min, max] with 0 < min ≤ max, both finite (lengths in m).
     Range range(const toml::node &n, const std::string &key) const {
         const char *expect = "[min, max] in m with 0 < min <= max";
@@ -151,12 +176,18 @@ private:
 
 SceneMedium read_medium(const Reader &rd, const toml::table &t, const std::string &path, double relative_error) {
     rd.only_keys(t, path,
-                 {"name", "sigma_s_per_m", "sigma_a_per_m", "viewer_inside", "thick", "thickness_m", "relative_error"});
+                 {"name", "sigma_s_per_m", "sigma_a_per_m", "phase_g", "viewer_inside", "thick", "thickness_m",
+                  "relative_error"});
     SceneMedium m;
     m.line = static_cast<int>(t.source().begin.line);
     m.name = rd.string(t, "name", path, true, "");
-    m.sigma_s_per_m = rd.number(t, "sigma_s_per_m", path, true, 0, 0.0, false, kSceneMaxSigma_per_m, kSigmaExpected);
-    m.sigma_a_per_m = rd.number(t, "sigma_a_per_m", path, true, 0, 0.0, false, kSceneMaxSigma_per_m, kSigmaExpected);
+    m.sigma_s_rgb_per_m = rd.number_or_rgb(t, "sigma_s_per_m", path, kSceneMaxSigma_per_m, kSigmaOrRgbExpected);
+    m.sigma_a_rgb_per_m = rd.number_or_rgb(t, "sigma_a_per_m", path, kSceneMaxSigma_per_m, kSigmaOrRgbExpected);
+    auto grey = [](const std::array<double, 3> &c) { return c[0] == c[1] && c[1] == c[2]; };
+    m.coloured = !grey(m.sigma_s_rgb_per_m) || !grey(m.sigma_a_rgb_per_m);
+    m.sigma_s_per_m = std::max({m.sigma_s_rgb_per_m[0], m.sigma_s_rgb_per_m[1], m.sigma_s_rgb_per_m[2]});
+    m.sigma_a_per_m = std::max({m.sigma_a_rgb_per_m[0], m.sigma_a_rgb_per_m[1], m.sigma_a_rgb_per_m[2]});
+    m.phase_g = rd.number(t, "phase_g", path, false, 0.0, -kSceneMaxPhaseG, false, kSceneMaxPhaseG, kPhaseGExpected);
     m.viewer_inside = rd.boolean(t, "viewer_inside", path, true, false);
     m.relative_error = rd.number(t, "relative_error", path, false, relative_error, kSceneMinRelativeError, false, 0.5,
                                  kRelativeErrorExpected);

@@ -3,6 +3,8 @@
 // and value; a bad scene throws SceneError naming file, line, column and key.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -21,6 +23,10 @@ public:
 inline constexpr double kSceneMinLength_m = 1e-6, kSceneMaxLength_m = 1e6; // distances, thicknesses
 inline constexpr double kSceneMaxSigma_per_m = 1e6;  // sigma_s, sigma_a
 inline constexpr double kSceneMaxIntensity = 1e30;   // W/sr, W/m^2
+// |phase_g| of a medium's Henyey–Greenstein phase: beyond 0.99 the forward peak (width
+// (1 − g)/(1 + g) in tan ξ) is narrower than 0.005 and the tables' axes would need
+// thousands of nodes to resolve it.
+inline constexpr double kSceneMaxPhaseG = 0.99;
 inline constexpr double kSceneMinRelativeError = 1e-9;
 inline constexpr double kSceneMinTableMiB = 0.01;
 // sigma_t times a light's largest distance or a slab's largest thickness: beyond it the
@@ -33,9 +39,15 @@ struct Range {
 
 struct SceneMedium {
     std::string name;
+    // Scattering and absorption coefficients, 1/m. A grey medium (one number in the file):
+    // the value, and every channel of the *_rgb arrays holds it. A coloured one ([r, g, b]):
+    // the largest channel here (what a table's domain must reach), the channels below.
     double sigma_s_per_m = 0; // scattering coefficient, 1/m
     double sigma_a_per_m = 0; // absorption coefficient, 1/m
-    double phase_g = 0.0;
+    double phase_g = 0.0;     // Henyey–Greenstein asymmetry, |g| <= kSceneMaxPhaseG; 0 isotropic, > 0 forward
+    std::array<double, 3> sigma_s_rgb_per_m{}; // per channel (r, g, b), 1/m
+    std::array<double, 3> sigma_a_rgb_per_m{};
+    bool coloured = false; // sigma_s or sigma_a given as [r, g, b] with channels that differ
     bool viewer_inside = false; // true: a volume the viewer is in (fog); false: an object seen from outside
     // Media seen from outside: a thick object (the view ray does not leave it) and/or slabs
     // whose path length inside along the view ray lies in `thickness_m`.
@@ -44,7 +56,18 @@ struct SceneMedium {
     Range thickness_m;
     double relative_error = 0; // accepted relative error on its radiance (default: the scene's)
     int line = 0; // where the [[medium]] table starts (for messages)
-    double sigma_t_per_m() const { return sigma_s_per_m + sigma_a_per_m; }
+    // Extinction, 1/m: the largest channel's (a grey medium's σ_s + σ_a, bit for bit), the
+    // smallest channel's, and channel c's.
+    double sigma_t_per_m() const {
+        if (!coloured) return sigma_s_per_m + sigma_a_per_m;
+        return std::max({sigma_t_channel_per_m(0), sigma_t_channel_per_m(1), sigma_t_channel_per_m(2)});
+    }
+    double sigma_t_min_per_m() const {
+        if (!coloured) return sigma_s_per_m + sigma_a_per_m;
+        return std::min({sigma_t_channel_per_m(0), sigma_t_channel_per_m(1), sigma_t_channel_per_m(2)});
+    }
+    double sigma_t_channel_per_m(int c) const { return sigma_s_rgb_per_m[c] + sigma_a_rgb_per_m[c]; }
+    bool isotropic() const { return phase_g == 0.0; }
 };
 
 enum class LightType { Point, Directional };

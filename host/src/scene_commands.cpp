@@ -105,6 +105,7 @@ void print_text(const ScenePlan &plan) {
         total += c.bytes;
         std::printf("\n%s: %s, %.1f KiB\n", t.name(), counts_text(c.counts, " x ").c_str(),
                     static_cast<double>(c.bytes) / 1024.0);
+        if (t.kind->per_phase()) std::printf("  phase_g = %.15g (Henyey-Greenstein)\n", t.phase_g);
         for (const auto &r : t.requested_by)
             std::printf("  asked for by medium '%s' with light '%s': %s\n", r.medium.c_str(), r.light.c_str(),
                         r.need.c_str());
@@ -139,8 +140,9 @@ nlohmann::json to_json(const ScenePlan &plan) {
     for (const PlannedTable &t : plan.tables) {
         const PlanTrial &c = *t.chosen_trial();
         json e;
-        e["kind"] = t.name();
+        e["kind"] = t.kind->name();
         e["file_stem"] = t.name();
+        e["phase_g"] = t.phase_g; // Henyey–Greenstein g of the table (0: isotropic)
         json req = json::array();
         for (const auto &r : t.requested_by) req.push_back({{"medium", r.medium}, {"light", r.light}, {"need", r.need}});
         e["requested_by"] = req;
@@ -273,14 +275,14 @@ void write_output_set(const ScenePlan &plan, const std::string &out_dir, const s
     std::vector<File> files;
     for (const PlannedTable &t : plan.tables) {
         if (format == "bin" || format == "both" || format == "all")
-            files.push_back({std::string(t.name()) + ".slut", t.name(), "bin", encode_binary(t.table)});
+            files.push_back({std::string(t.name()) + ".slut", t.kind->name(), "bin", encode_binary(t.table)});
         if (format == "exr" || format == "both" || format == "all") {
             if (t.table.storage == Storage::F64) std::cout << t.name() << ": no EXR (f64 storage is binary only)\n";
-            else files.push_back({std::string(t.name()) + ".exr", t.name(), "exr", encode_exr(t.table)});
+            else files.push_back({std::string(t.name()) + ".exr", t.kind->name(), "exr", encode_exr(t.table)});
         }
         if (format == "ktx2" || format == "all") {
             if (t.table.storage == Storage::F64) std::cout << t.name() << ": no KTX2 (f64 storage is binary only)\n";
-            else files.push_back({std::string(t.name()) + ".ktx2", t.name(), "ktx2", encode_ktx2(t.table)});
+            else files.push_back({std::string(t.name()) + ".ktx2", t.kind->name(), "ktx2", encode_ktx2(t.table)});
         }
     }
     nlohmann::json manifest;

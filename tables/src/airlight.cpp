@@ -32,25 +32,15 @@ slut_airlight_geometry setup_near_end_unscaled(const AirlightQuery &q) {
     const double half = 0.5 * q.gamma_rad < SLUT_PIO2_HI ? 0.5 * q.gamma_rad : SLUT_PIO2_HI;
     double sin_half, cos_half;
     slut_sincos_half_angle(half, &sin_half, &cos_half);
-    slut_airlight_geometry g;
-    slut_airlight_setup_near_end_unscaled(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
-                                          sin_half, cos_half, slut_pio2_minus(half), q.length_m, &g);
-    return g;
+    return slut_airlight_setup_near_end_unscaled(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr,
+                                                 q.distance_m, sin_half, cos_half, slut_pio2_minus(half), q.length_m);
 }
-
-void set_scale(slut_airlight_geometry *g) { slut_airlight_set_scale(g); }
 
 slut_airlight_geometry setup_near_end(const AirlightQuery &q) {
-    slut_airlight_geometry g = setup_near_end_unscaled(q);
-    set_scale(&g);
-    return g;
+    return slut_airlight_set_scale(setup_near_end_unscaled(q));
 }
 
-slut_airlight_geometry setup(const AirlightQuery &q) {
-    slut_airlight_geometry g = setup_near_end(q);
-    slut_airlight_setup_far_end_and_dv(&g);
-    return g;
-}
+slut_airlight_geometry setup(const AirlightQuery &q) { return slut_airlight_setup_far_end_and_dv(setup_near_end(q)); }
 
 } // namespace
 
@@ -94,7 +84,7 @@ AirlightQuery airlight_query_from_points(const double viewer_m[3], const double 
 
 double airlight_radiance_exact(const AirlightQuery &q) {
     const slut_airlight_geometry g = setup(q);
-    return slut_airlight_exact(&g);
+    return slut_airlight_exact(g);
 }
 
 namespace {
@@ -208,11 +198,11 @@ double AirlightTable::F(double u, double v) const {
 // (slut_airlight_from_gs, which still integrates where they would cancel).
 double AirlightTable::radiance(const AirlightQuery &q) const {
     const slut_airlight_geometry g = setup_near_end_unscaled(q);
-    if (g.kind != 0) return slut_airlight_from_gs(&g, 0.0, 0.0);
+    if (g.kind != 0) return slut_airlight_from_gs(g, 0.0, 0.0);
     // Beyond plain products (scales or lengths near the ends of the double range): the
     // general path, which multiplies in logarithms where it must (slut_airlight_scaled).
-    if (!slut_airlight_scale_is_plain(&g, q.distance_m, q.length_m)) return radiance_general(q);
-    if (slut_airlight_theta_fits_one_panel(&g)) return one_panel_radiance(g);
+    if (!slut_airlight_scale_is_plain(g, q.distance_m, q.length_m)) return radiance_general(q);
+    if (slut_airlight_theta_fits_one_panel(g)) return one_panel_radiance(g);
     return two_sample_radiance(g);
 }
 
@@ -220,15 +210,15 @@ double AirlightTable::radiance(const AirlightQuery &q) const {
 // logarithm where the scale is not a normal double), then one θ-panel or the two samples.
 double AirlightTable::radiance_general(const AirlightQuery &q) const {
     slut_airlight_geometry g = setup_near_end(q);
-    if (g.kind != 0) return slut_airlight_from_gs(&g, 0.0, 0.0);
-    if (slut_airlight_theta_fits_one_panel(&g))
+    if (g.kind != 0) return slut_airlight_from_gs(g, 0.0, 0.0);
+    if (slut_airlight_theta_fits_one_panel(g))
         return slut_airlight_scaled(
-            &g, slut_airlight_theta_integral_one_panel(g.c, g.cos_half, g.sin_half, g.tan_dv) / g.sin_gamma);
-    slut_airlight_setup_far_end(&g);
+            g, slut_airlight_theta_integral_one_panel(g.c, g.cos_half, g.sin_half, g.tan_dv) / g.sin_gamma);
+    g = slut_airlight_setup_far_end(g);
     const double at_u = unit_u(g.u);
     const double gs2 = scaled_tail_at(at_u, g.u, g.w2, g.a2);
     const double gs1 = g.w1 > 0.0 ? scaled_tail_at(at_u, g.u, g.w1, g.a1) : 0.0;
-    return slut_airlight_from_gs(&g, gs2, gs1);
+    return slut_airlight_from_gs(g, gs2, gs1);
 }
 
 #if SLUT_HAVE_SIMD4
@@ -363,12 +353,12 @@ double AirlightTable::two_sample_radiance(const slut_airlight_geometry &geometry
     slut_airlight_geometry g = geometry;
     const double w1 = SLUT_ISFINITE(g.optical_delta) ? std::atan(g.tan_w1) : 0.0;
     if (!fast_lookup_ || !SLUT_ISFINITE(g.optical_delta) || !(w1 >= w_min_) || !(g.u > 0.0) || g.u > u_max_) {
-        set_scale(&g);
-        slut_airlight_setup_far_end(&g);
+        g = slut_airlight_set_scale(g);
+        g = slut_airlight_setup_far_end(g);
         const double at_u = unit_u(g.u);
         const double gs2 = scaled_tail_at(at_u, g.u, g.w2, g.a2);
         const double gs1 = g.w1 > 0.0 ? scaled_tail_at(at_u, g.u, g.w1, g.a1) : 0.0;
-        return slut_airlight_from_gs(&g, gs2, gs1);
+        return slut_airlight_from_gs(g, gs2, gs1);
     }
     const slut_axis &axis_u = table_.axes[0].map;
     const double x_u = (g.u - axis_u.min) / axis_u.scale, one_plus_x_u = 1.0 + x_u;
@@ -391,8 +381,8 @@ double AirlightTable::two_sample_radiance(const slut_airlight_geometry &geometry
     exps2(ln2 - g.optical_distance, ln1 - g.optical_distance - g.optical_delta, &e2, &e1);
     const double viewer_term = (g.w2 / g.sin_gamma) * e2, far_term = (w1 / g.sin_gamma) * e1;
     if (far_term <= 0.5 * viewer_term) return g.scale_unattenuated * (viewer_term - far_term);
-    set_scale(&g);
-    return g.scale * (theta_rule8(g.c, g.w2, slut_airlight_dv(&g)) / g.sin_gamma);
+    g = slut_airlight_set_scale(g);
+    return g.scale * (theta_rule8(g.c, g.w2, slut_airlight_dv(g)) / g.sin_gamma);
 }
 
 // ------------------------------------------------------------------ batch radiance

@@ -56,15 +56,11 @@ double exit_transmittance(const NearLightQuery &q) {
     return slut_fresnel_transmittance(cos_i, cos_t, q.eta);
 }
 
-// σ_s/(4π)·I0·E·(T·H)/l, the form finite as σ_t → 0; +inf where H diverges.
+// σ_s/(4π)·I0·E·(T·H)/l with the exit's Fresnel factor (slut_nl_assemble); the factor only
+// where the assembly uses it.
 double assemble(const NearLightQuery &q, const slut_nl_params &p, double E) {
-    if (p.kind == SLUT_NL_LIGHT_BELOW || !(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) ||
-        !(q.length_m > 0.0))
-        return 0.0;
-    if (!(p.distance_m > 0.0)) return HUGE_VAL;
-    const double H_scaled = slut_nl_H_scaled(p.g, p.S_over_T);
-    if (!std::isfinite(H_scaled)) return HUGE_VAL;
-    return exit_transmittance(q) * q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * E * H_scaled / p.distance_m;
+    if (p.kind != SLUT_NL_OK) return 0.0;
+    return slut_nl_assemble(p, q.sigma_s_per_m, q.intensity_W_per_sr, q.length_m, exit_transmittance(q), E);
 }
 
 } // namespace

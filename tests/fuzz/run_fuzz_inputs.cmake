@@ -20,9 +20,10 @@ include("${SOURCE_DIR}/tables/io_sources.cmake") # the codecs of the runtime lib
 set(slut_io_sources ${SLUT_TABLE_IO_SOURCES} ${SLUT_TABLE_IO_NO_EXR_SOURCES})
 list(TRANSFORM slut_io_sources PREPEND tables/src/)
 foreach(s tables/src/table tables/src/sampler tables/src/airlight tables/src/nearlight tables/src/anisotropic
-          tables/src/nearlight_hg ${slut_io_sources}
+          tables/src/airlight_hg tables/src/nearlight_hg ${slut_io_sources}
           host/src/eval host/src/json_guard host/src/scene host/src/kinds/runtime_registry
-          host/src/kinds/airlight_runtime host/src/kinds/nearlight_runtime host/src/kinds/nearlight_hg_runtime)
+          host/src/kinds/airlight_runtime host/src/kinds/nearlight_runtime host/src/kinds/airlight_hg_runtime
+          host/src/kinds/nearlight_hg_runtime)
   get_filename_component(name ${s} NAME)
   step(${CLANGXX} ${flags} -fsanitize=fuzzer-no-link -c ${SOURCE_DIR}/${s}.cpp -o ${WORK_DIR}/obj/${name}.o)
   list(APPEND objects ${WORK_DIR}/obj/${name}.o)
@@ -38,6 +39,7 @@ file(COPY ${scenes} ${known_scenes} DESTINATION ${WORK_DIR}/corpus_scene)
 file(WRITE ${WORK_DIR}/corpus_eval/queries
   "{\"quantity\":\"F\",\"u\":1,\"v\":0.5}\n"
   "{\"quantity\":\"airlight\",\"sigma_s\":0.5,\"sigma_a\":0,\"intensity\":1,\"distance\":4,\"gamma\":2.84,\"length\":\"inf\"}\n"
+  "{\"quantity\":\"airlight\",\"phase_g\":0.85,\"sigma_s\":[0.5,0,3],\"sigma_a\":0.1,\"intensity\":1,\"distance\":4,\"gamma\":0.3,\"length\":10}\n"
   "{\"quantity\":\"N\",\"T\":2,\"g\":0.5,\"r\":1,\"S\":\"inf\"}\n"
   "{\"quantity\":\"near_light\",\"sigma_s\":250,\"sigma_a\":2,\"intensity\":1,\"normal\":[0,0,1],\"eye_dir\":[0,0.6,0.8],\"light_pos\":[0.01,0,0.02],\"length\":0.05}\n"
   "\n[[[{\"a\":\"\\u00e9\"}]]]\n")

@@ -67,7 +67,7 @@ public:
 
     void add_demand(const Scene &, const SceneMedium &m, const SceneLight &l, std::any &state,
                     PlannedTable &t) const override {
-        if (!m.viewer_inside) return;
+        if (!m.viewer_inside || !m.isotropic()) return; // g ≠ 0: the anisotropic kind's (airlight_hg_kind.cpp)
         if (!state.has_value()) state = Demand{};
         Demand &d = std::any_cast<Demand &>(state);
         const double sigma_t = m.sigma_t_per_m(), d_hi = l.distance_m.max;

@@ -43,13 +43,7 @@ public:
             }
             return;
         }
-        AirlightQuery a; // quantity "airlight"
-        a.sigma_s_per_m = eval_number_field(q, "sigma_s");
-        a.sigma_a_per_m = eval_number_field(q, "sigma_a");
-        a.intensity_W_per_sr = eval_number_field(q, "intensity");
-        a.distance_m = eval_number_field(q, "distance");
-        a.gamma_rad = eval_number_field(q, "gamma");
-        a.length_m = eval_number_field(q, "length");
+        const AirlightQuery a = eval_airlight_query(q); // quantity "airlight"
         const double exact = airlight_radiance_exact(a); // validates the query
         eval_put(out, "exact", exact);
         const bool through_light = a.gamma_rad == 0.0 && a.length_m >= a.distance_m;

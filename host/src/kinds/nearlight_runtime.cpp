@@ -55,19 +55,7 @@ public:
             eval_put(out, "approx", slut_nl_N_thin(T, g, r, S));
             return;
         }
-        NearLightQuery n; // quantity "near_light"
-        n.sigma_s_per_m = eval_number_field(q, "sigma_s");
-        n.sigma_a_per_m = eval_number_field(q, "sigma_a");
-        n.intensity_W_per_sr = eval_number_field(q, "intensity");
-        eval_vector_field(q, "normal", n.normal);
-        eval_vector_field(q, "eye_dir", n.eye_dir);
-        eval_vector_field(q, "light_pos", n.light_rel_m);
-        n.length_m = eval_number_field(q, "length");
-        if (q.contains("eta")) n.eta = eval_number_field(q, "eta");
-        if (q.contains("fresnel")) {
-            if (!q.at("fresnel").is_boolean()) throw std::invalid_argument("field \"fresnel\" must be true or false");
-            n.fresnel = q.at("fresnel").get<bool>();
-        }
+        const NearLightQuery n = eval_near_light_query(q); // quantity "near_light"
         eval_put(out, "exact", near_light_radiance_exact(n)); // validates the query
         const NearLightParams p = near_light_params(n);
         const NearLightTable *t = p.light_below ? nullptr : covering(tables, p.T, p.g, p.r, p.S);

@@ -73,6 +73,9 @@ public:
     // After all pairs, when some asked: the plan (domain, starting counts) and target_rel.
     virtual void finish_plan(const Scene &scene, const std::any &state, const AirlightOverrides &overrides,
                              PlannedTable &t) const = 0;
+    // Whether the kind makes one table per Henyey–Greenstein g (the planner then calls
+    // add_demand with the media of one g ≠ 0 at a time, each g its own table and file stem).
+    virtual bool per_phase() const { return false; }
     // `plan` text: why target_rel is what it is.
     virtual const char *target_reason() const = 0;
 

@@ -12,7 +12,10 @@
 #define SLUT_FILTER2D(t, x, y) textureLod(t, vec2(x, y), 0.0).r
 #define SLUT_FILTER3D(t, x, y, z) textureLod(t, vec3(x, y, z), 0.0).r
 #define SLUT_FLOAT3 vec3
-// (one line: GLSL before 4.20 has no line continuation)
-#define SLUT_CONST_FLOAT8(name, a0, a1, a2, a3, a4, a5, a6, a7) const float name[8] = float[8](a0, a1, a2, a3, a4, a5, a6, a7)
+// Constant arrays of kernels/ (SLUT_CONST_ARRAY* there; one line each: GLSL before 4.20 has no line
+// continuation).
+#define SLUT_CONST_ARRAY3(name, a0, a1, a2) const float name[3] = float[3](a0, a1, a2)
+#define SLUT_CONST_ARRAY4(name, a0, a1, a2, a3) const float name[4] = float[4](a0, a1, a2, a3)
+#define SLUT_CONST_ARRAY8(name, a0, a1, a2, a3, a4, a5, a6, a7) const float name[8] = float[8](a0, a1, a2, a3, a4, a5, a6, a7)
 
 float slut_inf() { return uintBitsToFloat(0x7F800000u); }

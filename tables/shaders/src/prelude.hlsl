@@ -13,7 +13,9 @@
 #define SLUT_FILTER2D(t, x, y) t.SampleLevel(t##_sampler, float2(x, y), 0.0)
 #define SLUT_FILTER3D(t, x, y, z) t.SampleLevel(t##_sampler, float3(x, y, z), 0.0)
 #define SLUT_FLOAT3 float3
-// (one line: GLSL before 4.20 has no line continuation)
-#define SLUT_CONST_FLOAT8(name, a0, a1, a2, a3, a4, a5, a6, a7) static const float name[8] = {a0, a1, a2, a3, a4, a5, a6, a7}
+// Constant arrays of kernels/ (SLUT_CONST_ARRAY* there).
+#define SLUT_CONST_ARRAY3(name, a0, a1, a2) static const float name[3] = {a0, a1, a2}
+#define SLUT_CONST_ARRAY4(name, a0, a1, a2, a3) static const float name[4] = {a0, a1, a2, a3}
+#define SLUT_CONST_ARRAY8(name, a0, a1, a2, a3, a4, a5, a6, a7) static const float name[8] = {a0, a1, a2, a3, a4, a5, a6, a7}
 
 float slut_inf() { return asfloat(0x7F800000u); }

@@ -230,9 +230,8 @@ TEST(NearLightMath, ZeroRIsTheAirlightIntegral) {
         w_direct.add(e, T, g, 0.0, S);
         EXPECT_LE(e, 1e-10) << "T=" << T << " g=" << g << " S=" << S << ": " << via_N << " vs " << (double)direct;
 
-        slut_airlight_geometry geo;
-        slut_airlight_setup(sigma_s, sigma_a, 1.0, D, (double)sgm, (double)cg, s, &geo);
-        const double L_air = slut_airlight_exact(&geo);
+        const slut_airlight_geometry geo = slut_airlight_setup(sigma_s, sigma_a, 1.0, D, (double)sgm, (double)cg, s);
+        const double L_air = slut_airlight_exact(geo);
         const double L_near = sigma_s * SLUT_INV_4PI * via_N;
         const double e2 = slut_test::rel_err(L_near, L_air);
         w_airlight.add(e2, T, g, 0.0, S);

@@ -1,7 +1,7 @@
 // The airlight GPU sampling snippets (scatterlut_airlight.{glsl,hlsl}, generated at build
 // time from tables/shaders/src and the SLUT_SHADER regions of kernels/; docs/SHADERS.md)
 // against the truth they must reproduce: the C++ runtime sampler (scatterlut::AirlightTable,
-// tables/src/airlight.cpp, itself tested against Boost.Math in test_airlight.cpp) on the
+// tables/src/airlight.cpp, itself tested against Boost.Math in runtime/test_airlight_table.cpp) on the
 // same table. The snippets run in single precision; these tests are what keeps them
 // from drifting:
 //   - ShaderSources: the GLSL and HLSL files agree outside their preludes, are ASCII, and their
@@ -316,8 +316,8 @@ Branches radiance_branches(const Query &q) {
     const scatterlut::AirlightTable &table = airlight_table();
     Branches b;
     const double gamma = std::atan2(static_cast<double>(q.gpu[5]), static_cast<double>(q.gpu[6]));
-    slut_airlight_geometry g;
-    slut_airlight_setup(q.gpu[1], q.gpu[2], q.gpu[3], q.gpu[4], std::sin(gamma), std::cos(gamma), q.gpu[7], &g);
+    const slut_airlight_geometry g =
+        slut_airlight_setup(q.gpu[1], q.gpu[2], q.gpu[3], q.gpu[4], std::sin(gamma), std::cos(gamma), q.gpu[7]);
     b.zero = g.kind == 1;
     b.divergent = g.kind == 2;
     if (g.kind != 0) return b;
@@ -612,9 +612,10 @@ TEST(ShaderSources, ConstantsMatchTheCHeaders) {
     }
     for (const std::string *text : {&glsl_snippet(), &hlsl_snippet()}) {
         for (const char *array : {"slut_gl16_x", "slut_gl16_w"}) {
-            const size_t at = text->find("SLUT_CONST_FLOAT8(" + std::string(array) + ",");
+            const std::string head = "SLUT_CONST_ARRAY8(" + std::string(array) + ",";
+            const size_t at = text->find(head);
             ASSERT_NE(at, std::string::npos) << array;
-            const std::string list = text->substr(at + 30, 400);
+            const std::string list = text->substr(at + head.size(), 400);
             std::vector<double> values;
             const std::regex number("[0-9]+\\.[0-9]+");
             for (auto it = std::sregex_iterator(list.begin(), list.end(), number);

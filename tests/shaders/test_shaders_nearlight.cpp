@@ -1,7 +1,7 @@
 // The near-light GPU snippets (scatterlut_nearlight.{glsl,hlsl}, generated at build time)
 // against the truth they must reproduce: the C++ runtime (scatterlut::NearLightTable::E
 // and ::radiance, near_light_radiance_thin / _distant; tables/src/nearlight.cpp, itself
-// tested against Boost.Math in test_nearlight_math.cpp and test_nearlight_table.cpp) on
+// tested against Boost.Math in kernels/test_nearlight_math.cpp and kernels/test_nearlight_kernel.cpp) on
 // the REAL tables of the default scene: `scatterlut generate` plans and writes
 // near_light_E3 (now 48 x 40 x 32) and near_light_E4 (now 40 x 16 x 32 x 24, axes T, g, r,
 // q) into the scratch directory, this test loads them,

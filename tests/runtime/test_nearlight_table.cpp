@@ -1,7 +1,6 @@
-// The near-light tables end to end: the OpenCL kernel against the independent Boost
-// reference (tests/nearlight_reference.hpp), the r = 0 identity between the near-light
-// and the airlight quantities, radiance from tables against exact, and eval's answers
-// against the 30-digit mpmath references.
+// The near-light runtime (tables/src/nearlight.cpp): radiance from tables against exact
+// (scalar, batch, general lookup), and eval's exact answers against the 30-digit mpmath
+// references.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +14,7 @@
 #include "eval.hpp"
 #include "generate_nearlight.hpp"
 #include "nearlight_reference.hpp"
+#include "nearlight_tables.hpp"
 #include "opencl_device.hpp"
 #include "reference_data.hpp"
 #include "scatterlut/airlight.hpp"
@@ -23,172 +23,10 @@ extern "C" {
 #include "slut_nearlight.h"
 }
 
-namespace {
-
-scatterlut::Device &device() {
-    static scatterlut::Device d("");
-    return d;
-}
-
-const scatterlut::Table &small_table(bool finite) {
-    static const auto make = [](bool fin) {
-        scatterlut::NearLightPlan plan;
-        plan.finite_thickness = fin;
-        plan.n_T = 9;
-        plan.n_g = 11;
-        plan.n_r = 20; // two lane groups, the second partial
-        plan.n_S = 5;
-        plan.storage = scatterlut::Storage::F64;
-        return scatterlut::generate_nearlight_table(device(), plan, scatterlut::Provenance{});
-    };
-    static const scatterlut::Table e3 = make(false), e4 = make(true);
-    return finite ? e4 : e3;
-}
-
-// The default finite-thickness table (generated once; ~10–40 s on 2 busy cores).
-const scatterlut::Table &default_e4() {
-    static const scatterlut::Table t =
-        scatterlut::generate_nearlight_table(device(), scatterlut::default_near_light_plan(true), {});
-    return t;
-}
-
-scatterlut::NearLightQuery query_of(const slut_test::NearLightRef &c) {
-    scatterlut::NearLightQuery q;
-    q.sigma_s_per_m = c.sigma_s;
-    q.sigma_a_per_m = c.sigma_a;
-    q.intensity_W_per_sr = c.intensity;
-    for (int k = 0; k < 3; ++k) {
-        q.normal[k] = c.normal[k];
-        q.eye_dir[k] = c.eye_dir[k];
-        q.light_rel_m[k] = c.light_pos[k];
-    }
-    q.length_m = c.length;
-    return q;
-}
-
-} // namespace
-
-// Every node of a 3-D and a 4-D table against Boost Gauss–Kronrod with break points:
-// ≤ 1e-8 relative (the bound asked of the kernel; we expect ~1e-14).
-TEST(NearLightKernel, EveryNodeMatchesBoostReference) {
-    for (bool finite : {false, true}) {
-        const scatterlut::Table &t = small_table(finite);
-        const scatterlut::NearLightTable table(t);
-        double worst = 0;
-        size_t node[4] = {0, 0, 0, 0};
-        const size_t n_axes = t.axes.size();
-        for (size_t flat = 0; flat < t.node_count(); ++flat) {
-            size_t rest = flat;
-            for (size_t a = 0; a < n_axes; ++a) {
-                node[a] = rest % static_cast<size_t>(t.axes[a].map.count);
-                rest /= static_cast<size_t>(t.axes[a].map.count);
-            }
-            double at[4]; // T, g, r, S (+inf in a thick table) by the table's own axis maps
-            table.node_params(node, at);
-            const double T = at[0], g = at[1], r = at[2], S = at[3];
-            // S = 0: N and H vanish; E is their limit, the attenuation at the entry point:
-            // e^{−T} for r = 0 (the whole light path inside), 1 for r > 0.
-            const double want = S == 0.0 ? (r == 0.0 ? std::exp(-T) : 1.0)
-                                         : static_cast<double>(slut_ref::nearlight_NHE(T, g, r, S).E);
-            const double got = table.node_E(node);
-            const double err = slut_test::rel_err(got, want);
-            ASSERT_LE(err, 1e-8) << "T=" << T << " g=" << g << " r=" << r << " S=" << S;
-            worst = std::max(worst, err);
-        }
-        std::printf("%s: %zu nodes, max rel err vs Boost %.2e\n", t.kind.c_str(), t.node_count(), worst);
-        // The default integration tolerance 1e-11 (kNearLightIntegrationTolerance) measures
-        // ~1e-11; 1e-10 is the tables' contract.
-        EXPECT_LE(t.accuracy.integration_max_rel, 1e-10);
-    }
-}
-
-// The kernel and the header's C++ sweep (the runtime's exact fallback) at the same nodes, on
-// tables stretched to the hard corners: T from 1e-5 to 100, g down to −0.999999 (the ray
-// grazes the light), r from 0 through 1e-12 to 1e6, S from 1e-8 to 200; 20 r nodes (a full
-// and a partial lane group).
-//  - Agreement: the C++ slut_nl_E_sweep with the kernel's r group and S list (the same panel
-//    mesh), ≤ 1e-13 relative at every node: both run the same rules; only the builtins'
-//    rounding differs (PoCL's vector exp and log against libm's, ~1 ulp per node).
-//  - Accuracy: ≤ 1e-10 (the tables' contract) at every node against an independent finer mesh
-//    (the C++ sweep at refine 2.5), and against the Boost reference where it claims 1e-15
-//    (T ≥ 1e-3).
-TEST(NearLightKernel, MatchesHostSweepAndReferenceAtHardCorners) {
-    for (bool finite : {false, true}) {
-        scatterlut::NearLightPlan plan = scatterlut::default_near_light_plan(finite);
-        plan.T_min = 1e-5;
-        plan.T_max = 100.0;
-        plan.g_min = -0.999999;
-        plan.r_max = 1e6;
-        plan.r_scale = 1e-12;
-        plan.S_min = 1e-8;
-        plan.S_max = 200.0;
-        plan.n_T = 7;
-        plan.n_g = 9;
-        plan.n_r = 20;
-        plan.n_S = 6;
-        const scatterlut::Table layout = scatterlut::make_nearlight_table_layout(plan);
-        const std::vector<double> values = scatterlut::integrate_nearlight_ln_E(device(), layout);
-        const double refine = slut_nl_refine_for_tolerance(plan.integration_tolerance);
-        const auto &ax = layout.axes;
-        const int n_S = finite ? ax[3].map.count : 1;
-        double worst_host = 0, worst_fine = 0, worst_boost = 0;
-        for (int iT = 0; iT < plan.n_T; ++iT) {
-            const double T = slut_axis_node(&ax[0].map, iT);
-            for (int ig = 0; ig < plan.n_g; ++ig) {
-                const double g = slut_axis_node(&ax[1].map, ig);
-                double S[SLUT_NL_MAX_SWEEP];
-                for (int i = 0; i < n_S; ++i) S[i] = finite ? slut_nl_S_node(&ax[3].map, T, g, i) : HUGE_VAL;
-                for (int ir0 = 0; ir0 < plan.n_r; ir0 += SLUT_NL_MAX_LANES) {
-                    const int lanes = std::min(SLUT_NL_MAX_LANES, plan.n_r - ir0);
-                    double r[SLUT_NL_MAX_LANES];
-                    for (int l = 0; l < lanes; ++l) r[l] = slut_axis_node(&ax[2].map, ir0 + l);
-                    std::vector<double> host(static_cast<size_t>(n_S * lanes)), fine(host.size());
-                    slut_nl_E_sweep(T, g, S, n_S, r, lanes, host.data(), refine);
-                    slut_nl_E_sweep(T, g, S, n_S, r, lanes, fine.data(), 2.5);
-                    for (int i = 0; i < n_S; ++i) {
-                        for (int l = 0; l < lanes; ++l) {
-                            const size_t node[4] = {static_cast<size_t>(iT), static_cast<size_t>(ig),
-                                                    static_cast<size_t>(ir0 + l), static_cast<size_t>(i)};
-                            const double base = finite ? slut_nl_E_base(T, r[l], S[i]) : 1.0;
-                            const double got = std::exp(values[layout.index(node)]) * base;
-                            const size_t k = static_cast<size_t>(i * lanes + l);
-                            const double e_host = slut_test::rel_err(got, host[k]);
-                            const double e_fine = slut_test::rel_err(got, fine[k]);
-                            ASSERT_LE(e_host, 1e-13) << "T=" << T << " g=" << g << " r=" << r[l] << " S=" << S[i];
-                            ASSERT_LE(e_fine, 1e-10) << "T=" << T << " g=" << g << " r=" << r[l] << " S=" << S[i];
-                            worst_host = std::max(worst_host, e_host);
-                            worst_fine = std::max(worst_fine, e_fine);
-                            if (T >= 1e-3 && S[i] > 0.0) {
-                                const double want =
-                                    static_cast<double>(slut_ref::nearlight_NHE(T, g, r[l], S[i]).E);
-                                const double e_boost = slut_test::rel_err(got, want);
-                                ASSERT_LE(e_boost, 1e-10)
-                                    << "T=" << T << " g=" << g << " r=" << r[l] << " S=" << S[i];
-                                worst_boost = std::max(worst_boost, e_boost);
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        std::printf("%s corners: %zu nodes, max rel vs host sweep %.2e, vs refine 2.5 %.2e, vs Boost %.2e\n",
-                    layout.kind.c_str(), values.size(), worst_host, worst_fine, worst_boost);
-    }
-}
-
-// r = 0 (the light in the surface plane, its whole path inside): N is the airlight
-// integral with cos γ = −g, per unit σ_s p I0 σ_t: N = σ_t^{-1}·L_air/(σ_s p I0) with
-// D = T/σ_t. Two independent computations (slut_nearlight.h's E·H and the airlight θ-integral) agree.
-TEST(NearLightIdentity, ZeroRIsTheAirlight) {
-    for (double T : {0.05, 1.0, 7.0})
-        for (double g : {-0.9, -0.3, 0.0, 0.6, 0.99})
-            for (double S : {0.5, 4.0, std::numeric_limits<double>::infinity()}) {
-                const double N = slut_nl_E(T, g, 0.0, S) * slut_nl_H(T, g, S);
-                scatterlut::AirlightQuery q{1.0, 0.0, 4.0 * M_PI, T, std::acos(-g), S}; // σ_t = 1: D = T, s = S
-                const double L = scatterlut::airlight_radiance_exact(q);
-                EXPECT_LE(slut_test::rel_err(N, L), 1e-11) << "T=" << T << " g=" << g << " S=" << S;
-            }
-}
+using slut_test::default_e4;
+using slut_test::device;
+using slut_test::query_of;
+using slut_test::small_table;
 
 // eval's "exact" for N within 1e-8 of every point of N_ref.json (mpmath).
 TEST(NearLightEval, ExactMatchesMpmathReference) {
@@ -320,55 +158,6 @@ TEST(NearLightRadiance, FiniteTableRadianceMatchesExact) {
         ++finite_cases;
     }
     EXPECT_GT(finite_cases, 0);
-}
-
-// Eye-side refraction: the radiance along the refracted ray by explicit 3-D quadrature
-// (point P = O − x ω_t; the light path below the plane is |P − light|·depth/(depth + height))
-// times the unpolarised Fresnel transmittance, against near_light_radiance_exact with
-// eta and fresnel. Boost Gauss–Kronrod with break points at e-folds; 1e-9.
-TEST(NearLightRefraction, MatchesExplicitQuadratureAlongTheRefractedRay) {
-    const double eta = 1.45, sigma_s = 0.8, sigma_a = 0.3, sigma_t = sigma_s + sigma_a, I0 = 2.0;
-    const double n[3] = {0, 0, 1};
-    const double c = std::cos(0.9), sn = std::sin(0.9);
-    const double eye[3] = {sn, 0, c};
-    const double light[3] = {-0.4, 0.3, 0.5};
-    for (double s : {0.7, std::numeric_limits<double>::infinity()}) {
-        // ω_t by Snell's law, written out independently of the header.
-        const double sin_t = sn / eta, cos_t = std::sqrt(1 - sin_t * sin_t);
-        const double wt[3] = {sin_t, 0, cos_t};
-        auto integrand = [&](double x) {
-            const double P[3] = {-x * wt[0], -x * wt[1], -x * wt[2]};
-            const double d[3] = {light[0] - P[0], light[1] - P[1], light[2] - P[2]};
-            const double h = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-            const double depth = -P[2], height = light[2];
-            const double inside = h * depth / (depth + height);
-            return std::exp(-sigma_t * (x + inside)) / (h * h);
-        };
-        const double end = std::isinf(s) ? 60.0 / sigma_t : s;
-        double integral = 0;
-        for (double a = 0; a < end; a += 0.25) {
-            const double b = std::min(end, a + 0.25);
-            integral += boost::math::quadrature::gauss_kronrod<double, 61>::integrate(integrand, a, b, 15, 1e-14);
-        }
-        const double rs = (c - eta * cos_t) / (c + eta * cos_t), rp = (eta * c - cos_t) / (eta * c + cos_t);
-        const double fresnel = 1 - 0.5 * (rs * rs + rp * rp);
-        const double want = fresnel * sigma_s / (4 * M_PI) * I0 * integral;
-        scatterlut::NearLightQuery q;
-        q.sigma_s_per_m = sigma_s;
-        q.sigma_a_per_m = sigma_a;
-        q.intensity_W_per_sr = I0;
-        for (int k = 0; k < 3; ++k) {
-            q.normal[k] = n[k];
-            q.eye_dir[k] = eye[k];
-            q.light_rel_m[k] = light[k];
-        }
-        q.length_m = s;
-        q.eta = eta;
-        q.fresnel = true;
-        EXPECT_LE(slut_test::rel_err(scatterlut::near_light_radiance_exact(q), want), 1e-9) << "s=" << s;
-        q.fresnel = false;
-        EXPECT_LE(slut_test::rel_err(scatterlut::near_light_radiance_exact(q), want / fresnel), 1e-9) << "s=" << s;
-    }
 }
 
 // The batch radiance is the scalar radiance per query (to 1e-12 relative: libmvec's ≤ 4 ulp

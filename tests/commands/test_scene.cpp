@@ -267,6 +267,18 @@ const BadScene kBadScenes[] = {
     {"unknown medium", "[[light]]\nname = \"sun\"\ntype = \"directional\"\nmedia = [\"smog\"]\n", 4, "light[0].media[0]"},
     {"bad enum", "[output]\nformat = \"png\"\n", 2, "output.format"},
     {"error out of range", "[accuracy]\nrelative_error = 0\n", 2, "accuracy.relative_error"},
+    {"phase_g beyond 0.99", "[[medium]]\nname = \"fog\"\nsigma_s_per_m = 0.1\nsigma_a_per_m = 0\nphase_g = 0.995\nviewer_inside = true\n",
+     5, "medium[0].phase_g"},
+    {"phase_g below -0.99", "[[medium]]\nname = \"fog\"\nsigma_s_per_m = 0.1\nsigma_a_per_m = 0\nphase_g = -1\nviewer_inside = true\n",
+     5, "medium[0].phase_g"},
+    {"phase_g a string", "[[medium]]\nname = \"fog\"\nsigma_s_per_m = 0.1\nsigma_a_per_m = 0\nphase_g = \"fwd\"\nviewer_inside = true\n",
+     5, "medium[0].phase_g"},
+    {"rgb of two", "[[medium]]\nname = \"fog\"\nsigma_s_per_m = [0.1, 0.2]\nsigma_a_per_m = 0\nviewer_inside = true\n", 3,
+     "medium[0].sigma_s_per_m"},
+    {"rgb of four", "[[medium]]\nname = \"fog\"\nsigma_s_per_m = 0.1\nsigma_a_per_m = [0, 0, 0, 0]\nviewer_inside = true\n", 4,
+     "medium[0].sigma_a_per_m"},
+    {"rgb channel negative", "[[medium]]\nname = \"fog\"\nsigma_s_per_m = [0.1, -0.2, 0.3]\nsigma_a_per_m = 0\nviewer_inside = true\n", 3,
+     "medium[0].sigma_s_per_m[1]"},
 };
 
 TEST(SceneErrors, LineNumberedExit2NothingWritten) {
@@ -302,6 +314,41 @@ TEST(SceneErrors, GoodMediumParses) {
     ASSERT_EQ(s.media.size(), 1u);
     EXPECT_DOUBLE_EQ(s.media[0].sigma_t_per_m(), 0.11);
     EXPECT_DOUBLE_EQ(s.media[0].relative_error, 0.01); // the documented default
+}
+
+// phase_g (default 0, |g| <= 0.99) and coefficients as a number or an [r, g, b] triple.
+TEST(SceneErrors, PhaseAndColouredCoefficients) {
+    const scatterlut::Scene grey = scatterlut::parse_scene(kGoodMedium, "good.toml");
+    EXPECT_EQ(grey.media[0].phase_g, 0.0);
+    EXPECT_FALSE(grey.media[0].coloured);
+    EXPECT_EQ(grey.media[0].sigma_s_rgb_per_m, (std::array<double, 3>{0.1, 0.1, 0.1}));
+    EXPECT_EQ(grey.media[0].sigma_t_per_m(), 0.1 + 0.01); // bit for bit the grey sum
+    const scatterlut::Scene c = scatterlut::parse_scene(
+        "[[medium]]\nname = \"haze\"\nsigma_s_per_m = [0.02, 0.04, 0.08]\nsigma_a_per_m = [0.01, 0, 0]\n"
+        "phase_g = 0.85\nviewer_inside = true\n",
+        "c.toml");
+    const scatterlut::SceneMedium &m = c.media[0];
+    EXPECT_TRUE(m.coloured);
+    EXPECT_EQ(m.phase_g, 0.85);
+    EXPECT_EQ(m.sigma_s_per_m, 0.08); // the largest channel
+    EXPECT_EQ(m.sigma_a_per_m, 0.01);
+    EXPECT_DOUBLE_EQ(m.sigma_t_per_m(), 0.08);
+    EXPECT_DOUBLE_EQ(m.sigma_t_min_per_m(), 0.03);
+    EXPECT_DOUBLE_EQ(m.sigma_t_channel_per_m(1), 0.04);
+    // Equal channels are a grey medium; the bounds ±0.99 are accepted.
+    const scatterlut::Scene e = scatterlut::parse_scene(
+        "[[medium]]\nname = \"a\"\nsigma_s_per_m = [0.1, 0.1, 0.1]\nsigma_a_per_m = 0\nphase_g = -0.99\nviewer_inside = true\n"
+        "[[medium]]\nname = \"b\"\nsigma_s_per_m = 0.1\nsigma_a_per_m = 0\nphase_g = 0.99\nviewer_inside = true\n",
+        "e.toml");
+    EXPECT_FALSE(e.media[0].coloured);
+    EXPECT_EQ(e.media[0].phase_g, -0.99);
+    EXPECT_EQ(e.media[1].phase_g, 0.99);
+    // The optical-depth check uses the densest channel.
+    EXPECT_THROW(scatterlut::parse_scene("[[medium]]\nname = \"a\"\nsigma_s_per_m = [0, 0, 200]\nsigma_a_per_m = 0\n"
+                                         "viewer_inside = true\n[[light]]\nname = \"l\"\ntype = \"point\"\n"
+                                         "intensity_W_per_sr = 1\ndistance_m = [1, 100]\n",
+                                         "d.toml"),
+                 scatterlut::SceneError);
 }
 
 TEST(SceneErrors, MessageNamesFileLineColumnKey) {

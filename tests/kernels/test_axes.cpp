@@ -1,13 +1,20 @@
-// The axis maps of the near-light tables (kernels/slut_axes.h, kernels/slut_nearlight.h):
-// the loglin T warp and the 4-D table's slab axis q. Each map is a pair param ↔ unit
-// coordinate shared by the kernel (nodes), the runtime sampler and the shader snippets;
-// these tests pin the pair to each other (round trips), to the texel-centre node
-// convention, and the slab map to its definition through the closed-form H.
-#include <gtest/gtest.h>
-
+// The axis maps (kernels/slut_axes.h, the slab axis of kernels/slut_nearlight.h): each map
+// is a pair param ↔ unit coordinate shared by the kernels (nodes), the runtime samplers and
+// the shader snippets. These tests pin the pair to each other (round trips), to the
+// texel-centre node convention, the clamp beyond the ends, and the slab map to its
+// definition through the closed-form H.
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+
+extern "C" {
+#include "slut_airlight.h"
+}
 
 #include "reference_data.hpp"
 #include "slut_axes.h"
@@ -15,6 +22,63 @@
 
 namespace {
 const double kInf = std::numeric_limits<double>::infinity();
+}
+
+// Axis maps round-trip (parameter → unit → parameter), end nodes are exact, and the
+// texel-centre convention puts node i at texture coordinate (i + 0.5)/count.
+TEST(AxisMaps, RoundTripAndTexelCentres) {
+    const slut_axis axes[] = {{0.0, 64.0, 1e-7, SLUT_WARP_LOG1P, 512},
+                              {1e-3, SLUT_PIO2_HI, 0.0, SLUT_WARP_ASINH_COT, 256},
+                              {1e-3, 100.0, 0.0, SLUT_WARP_LOG, 33},
+                              {-1.0, 1.0, 0.0, SLUT_WARP_SQRT1P, 65},
+                              {-2.0, 3.0, 0.0, SLUT_WARP_LINEAR, 9}};
+    for (const auto &a : axes) {
+        EXPECT_EQ(slut_axis_node(&a, 0), a.min);
+        EXPECT_EQ(slut_axis_node(&a, a.count - 1), a.max);
+        for (int i = 0; i < a.count; ++i) {
+            const double p = slut_axis_node(&a, i);
+            const double x = slut_unit_from_param(&a, p);
+            EXPECT_NEAR(x, double(i) / (a.count - 1), 1e-12) << "warp " << a.warp << " node " << i;
+            EXPECT_NEAR(slut_texcoord_from_unit(x, a.count), (i + 0.5) / a.count, 1e-12);
+            if (i > 0) {
+                EXPECT_GT(p, slut_axis_node(&a, i - 1)) << "nodes must increase";
+            }
+            const double back = slut_param_from_unit(&a, x);
+            EXPECT_LE(std::fabs(back - p), 1e-12 * std::max(std::fabs(p), 1e-3)) << "warp " << a.warp;
+        }
+        int i0;
+        double f;
+        slut_cell_from_unit(1.0, a.count, &i0, &f);
+        EXPECT_EQ(i0, a.count - 2);
+        EXPECT_EQ(f, 1.0);
+        slut_cell_from_unit(-0.5, a.count, &i0, &f); // clamp, never wrap
+        EXPECT_EQ(i0, 0);
+        EXPECT_EQ(f, 0.0);
+    }
+}
+
+// Beyond its ends every axis clamps to its end node, whatever the warp does there: LOG1P
+// is undefined below min − scale (the default near-light T axis starts at 1.26 with
+// scale 0.3), LOG at p ≤ 0; NaN goes to the first node. Found by the near-light shader
+// test: a T below 0.96 gave a NaN unit coordinate and an index outside the table.
+TEST(AxisMaps, BeyondTheEndsClampToTheEndNodes) {
+    const slut_axis axes[] = {{1.26, 12.6, 0.3, SLUT_WARP_LOG1P, 17},
+                              {1e-3, 100.0, 0.0, SLUT_WARP_LOG, 9},
+                              {1e-3, SLUT_PIO2_HI, 0.0, SLUT_WARP_ASINH_COT, 9},
+                              {-0.99, 1.0, 0.0, SLUT_WARP_SQRT1P, 9},
+                              {-2.0, 3.0, 0.0, SLUT_WARP_LINEAR, 9}};
+    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = HUGE_VAL;
+    for (const auto &a : axes) {
+        for (double below : {a.min - 1.0, a.min - 1e3, -inf, nan}) {
+            EXPECT_EQ(slut_unit_from_param(&a, below), 0.0) << "warp " << a.warp << " p " << below;
+            int i0;
+            double f;
+            slut_cell_from_unit(slut_unit_from_param(&a, below), a.count, &i0, &f);
+            EXPECT_EQ(i0, 0);
+            EXPECT_EQ(f, 0.0);
+        }
+        for (double above : {a.max + 1.0, a.max * 1e3 + 1e3, inf}) EXPECT_EQ(slut_unit_from_param(&a, above), 1.0);
+    }
 }
 
 // loglin: g(p) = ln p + p/s. Round trips p → x → p and x → p → x to 1e-14 over the T

@@ -1,0 +1,170 @@
+#include "scatterlut/airlight_hg.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+
+#include "scatterlut/io.hpp"
+
+extern "C" {
+#include "slut_airlight_hg.h"
+}
+
+namespace scatterlut {
+namespace {
+
+void require(bool ok, const std::string &message) {
+    if (!ok) throw std::invalid_argument(message);
+}
+
+} // namespace
+
+std::string airlight_fg_stem(double phase_g) {
+    char text[40];
+    for (int digits = 1; digits <= 17; ++digits) { // the shortest text that reads back as g
+        std::snprintf(text, sizeof text, "%.*g", digits, phase_g);
+        if (std::strtod(text, nullptr) == phase_g) break;
+    }
+    return std::string(kKindAirlightFg) + "_g" + text;
+}
+
+double table_phase_g(const Table &table) {
+    const auto it = table.extra.find(kPhaseGKey);
+    require(it != table.extra.end(), "table of kind '" + table.kind + "' records no \"" + kPhaseGKey + "\"");
+    char *end = nullptr;
+    const double g = std::strtod(it->second.c_str(), &end);
+    require(end != it->second.c_str() && *end == '\0',
+            std::string("\"") + kPhaseGKey + "\" = '" + it->second + "' is not a number");
+    check_phase_g(g);
+    return g;
+}
+
+AirlightHgTable::AirlightHgTable(Table table) : table_(std::move(table)) {
+    require(table_.kind == kKindAirlightFg, "not an anisotropic airlight table (kind '" + table_.kind + "')");
+    require(table_.quantity_version == kAirlightFgQuantityVersion,
+            "anisotropic airlight table quantity version " + std::to_string(table_.quantity_version) +
+                " is not the one this library knows (" + std::to_string(kAirlightFgQuantityVersion) + ")");
+    require(table_.axes.size() == 2 && table_.axes[0].name == "u" && table_.axes[1].name == "w",
+            "anisotropic airlight table must have axes (u, w)");
+    require(!table_.channels.empty() && table_.channels[0].name == "ln_Gs_g" &&
+                table_.channels[0].encoding == Encoding::Log,
+            "anisotropic airlight table channel 0 must be ln_Gs_g (log encoded)");
+    table_.check_consistent();
+    g_ = table_phase_g(table_);
+    require(g_ != 0.0, "anisotropic airlight table with phase.g = 0: the isotropic table (airlight_F) serves g = 0");
+    require(table_.axes[0].map.min == 0.0, "anisotropic airlight table u axis must start at 0");
+    require(std::fabs(table_.axes[1].map.max - 1.5707963267948966) < 1e-12,
+            "anisotropic airlight table w axis must end at pi/2");
+    // G̃_g ∈ (0, ψ_max(g)]: ln G̃_g ≤ ln ψ_max (beyond rounding) and above −1e6.
+    const double ln_max = std::log(slut_hg_psi_max(g_));
+    const size_t stride = table_.channels.size();
+    for (size_t i = 0; i < table_.values.size(); i += stride)
+        require(table_.values[i] >= kMinStoredLn && table_.values[i] <= ln_max + kLnRoundingSlack,
+                "anisotropic airlight table: ln G~_g = " + std::to_string(table_.values[i]) + " at " +
+                    detail::describe_value(table_, i) + " is outside the quantity's range (ln G~_g <= ln psi_max = " +
+                    std::to_string(ln_max) + "): the file is corrupt");
+    cache_ = make_sampler_cache(table_);
+    u_max_ = table_.axes[0].map.max;
+    w_min_ = table_.axes[1].map.min;
+}
+
+double AirlightHgTable::scaled_tail(double u, double w) const {
+    if (w < w_min_) return slut_hg_gs_small_w(w, u * (std::cos(w) / std::sin(w)), g_);
+    if (u > u_max_) return slut_hg_gs_large_u(u, w, g_);
+    const double params[2] = {u, w};
+    return sample(table_, cache_, params, 0);
+}
+
+double AirlightHgTable::radiance(const AirlightQuery &q) const {
+    check_airlight_query(q);
+    const double sigma_t = q.sigma_s_per_m + q.sigma_a_per_m;
+    if (!(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0)) return 0.0;
+    if (!(sigma_t * q.distance_m < 1e300)) return 0.0;
+    const double sin_gamma = std::sin(q.gamma_rad), cos_gamma = std::cos(q.gamma_rad);
+    double sh = 0, ch = 0;
+    slut_hg_half_angles(sin_gamma, cos_gamma, &sh, &ch);
+    const double s_over_D = (q.length_m > 1e300) ? HUGE_VAL : q.length_m / q.distance_m;
+    // The bracket B_g (slut_hg_airlight_bracket's) from two table samples where that is sound.
+    double B = -1.0;
+    if (sin_gamma >= 1e-6 && (s_over_D < 1.0 || sin_gamma > 0.0)) {
+        const double u = sigma_t * q.distance_m * sin_gamma;
+        const double w2 = std::atan2(ch, sh); // π/2 − γ/2, exact near γ → π too
+        const double a = w2 * scaled_tail(u, w2);
+        double b = 0.0;
+        if (s_over_D <= 1e300) {
+            // Δ = s + d(s) − D without cancellation (slut_hg_airlight_bracket); tan v1 = tan(γ/2) + Δ/(D sin γ).
+            const double sp = s_over_D, sh2 = sh * sh;
+            const double d_far = (sp > 1.0) ? sp * std::sqrt((1.0 - 1.0 / sp) * (1.0 - 1.0 / sp) + 4.0 * sh2 / sp)
+                                            : std::sqrt((1.0 - sp) * (1.0 - sp) + 4.0 * sp * sh2);
+            const double delta_over_D = (sp >= 1.0) ? (sp - 1.0) + d_far : 4.0 * sp * sh2 / (d_far + (1.0 - sp));
+            const double tan_v1 = sh / ch + delta_over_D / sin_gamma;
+            const double w1 = std::atan2(1.0, tan_v1); // π/2 − v1
+            b = std::exp(-sigma_t * q.distance_m * delta_over_D) * w1 * scaled_tail(u, w1);
+        }
+        if (std::isfinite(a) && std::isfinite(b) && b <= 0.5 * a && a > 0.0) B = (a - b) / sin_gamma;
+    }
+    if (B < 0.0) B = slut_hg_airlight_bracket(sigma_t * q.distance_m, sh, ch, s_over_D, g_, 1.0);
+    if (!(B > 0.0)) return 0.0;
+    if (!std::isfinite(B)) return HUGE_VAL;
+    const double scale = q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * 2.0 / q.distance_m *
+                         std::exp(-sigma_t * q.distance_m);
+    if (scale >= SLUT_DBL_MIN_NORMAL && scale <= 1e300) return scale * B;
+    return std::exp(std::log(q.sigma_s_per_m) + std::log(SLUT_INV_4PI * 2.0) + std::log(q.intensity_W_per_sr) -
+                    std::log(q.distance_m) - sigma_t * q.distance_m + std::log(B));
+}
+
+Rgb AirlightHgTable::radiance_rgb(const AirlightQuery &q, const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m) const {
+    Rgb out{};
+    for (size_t c = 0; c < 3; ++c) {
+        require(sigma_s_per_m[c] >= 0.0 && std::isfinite(sigma_s_per_m[c]) && sigma_a_per_m[c] >= 0.0 &&
+                    std::isfinite(sigma_a_per_m[c]),
+                "sigma_s and sigma_a must be finite and >= 0 (1/m) in every channel");
+    }
+    for (size_t c = 0; c < 3; ++c) {
+        AirlightQuery qc = q;
+        qc.sigma_s_per_m = sigma_s_per_m[c];
+        qc.sigma_a_per_m = sigma_a_per_m[c];
+        out[c] = radiance(qc);
+    }
+    return out;
+}
+
+double airlight_hg_radiance_thin(const AirlightQuery &q, double phase_g) {
+    check_phase_g(phase_g);
+    check_airlight_query(q);
+    if (!(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0)) return 0.0;
+    double sh = 0, ch = 0;
+    slut_hg_half_angles(std::sin(q.gamma_rad), std::cos(q.gamma_rad), &sh, &ch);
+    const double s_over_D = (q.length_m > 1e300) ? HUGE_VAL : q.length_m / q.distance_m;
+    const double B = slut_hg_airlight_bracket(0.0, sh, ch, s_over_D, phase_g, 1.0); // no extinction
+    if (!(B > 0.0)) return 0.0;
+    if (!std::isfinite(B)) return HUGE_VAL;
+    const double scale = q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * 2.0 / q.distance_m;
+    if (scale >= SLUT_DBL_MIN_NORMAL && scale <= 1e300) return scale * B;
+    return std::exp(std::log(q.sigma_s_per_m) + std::log(SLUT_INV_4PI * 2.0) + std::log(q.intensity_W_per_sr) -
+                    std::log(q.distance_m) + std::log(B));
+}
+
+double airlight_hg_radiance_distant(const AirlightQuery &q, double phase_g) {
+    check_phase_g(phase_g);
+    check_airlight_query(q);
+    if (!(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0)) return 0.0;
+    const double sigma_t = q.sigma_s_per_m + q.sigma_a_per_m;
+    double sh = 0, ch = 0;
+    slut_hg_half_angles(std::sin(q.gamma_rad), std::cos(q.gamma_rad), &sh, &ch);
+    const double one_minus_cos = 2.0 * sh * sh; // 1 − cos γ
+    const double rate = sigma_t * one_minus_cos; // 1/m
+    // ∫_0^s e^{−rate x} dx = −expm1(−rate s)/rate (s for rate s → 0; 1/rate for s = ∞).
+    double path_m;
+    if (q.length_m > 1e300) path_m = rate > 0.0 ? 1.0 / rate : HUGE_VAL;
+    else path_m = rate * q.length_m > 1e-300 ? -std::expm1(-rate * q.length_m) / rate : q.length_m;
+    if (!std::isfinite(path_m)) return HUGE_VAL;
+    const double psi = slut_hg_psi_half(phase_g, sh * sh, ch * ch); // ψ_g at θ = γ
+    const double ln = std::log(q.sigma_s_per_m) + std::log(SLUT_INV_4PI * psi) + std::log(q.intensity_W_per_sr) -
+                      2.0 * std::log(q.distance_m) - sigma_t * q.distance_m + std::log(path_m);
+    const double L = std::exp(ln);
+    return std::isfinite(L) ? L : (ln > 0 ? HUGE_VAL : 0.0);
+}
+
+} // namespace scatterlut
