@@ -228,12 +228,17 @@ constexpr double kNearLightBoostTol = 1e-6;
 
 // As above for E. Accuracy: device and baseline at the sampled nodes against the
 // long-double gauss_kronrod<61> reference (tests/nearlight_reference.hpp).
+// The near-light benches' layouts: E3 64³ (range(0) = 3) or E4 32³ × 17 (range(0) = 4).
+scatterlut::NearLightPlan bench_near_light_plan(const benchmark::State &state) {
+    scatterlut::NearLightPlan plan = scatterlut::default_near_light_plan(state.range(0) == 4);
+    plan.n_T = plan.n_g = plan.n_r = plan.finite_thickness ? 32 : 64;
+    plan.n_S = 17;
+    return plan;
+}
+
 void BM_NearLightGeneration(benchmark::State &state) {
     const bool finite = state.range(0) == 4;
-    scatterlut::NearLightPlan plan = scatterlut::default_near_light_plan(finite);
-    plan.n_T = plan.n_g = plan.n_r = finite ? 32 : 64;
-    plan.n_S = 17;
-    const scatterlut::Table layout = scatterlut::make_nearlight_table_layout(plan);
+    const scatterlut::Table layout = scatterlut::make_nearlight_table_layout(bench_near_light_plan(state));
     const auto &ax = layout.axes;
     const int n_S = finite ? ax[3].map.count : 1;
     const auto picks = sample_nodes<4>({ax[0].map.count, ax[1].map.count, ax[2].map.count, n_S}, 300, 11);
@@ -299,10 +304,7 @@ BENCHMARK(BM_NearLightGeneration)->Arg(3)->Arg(4)->Iterations(5)->Unit(benchmark
 // BM_NearLightGeneration), in alternating rounds of the same run: iso_ms, hg_ms (medians) and
 // hg_over_iso, the median of the per-round ratios [min, max].
 void BM_NearLightHgGeneration(benchmark::State &state) {
-    const bool finite = state.range(0) == 4;
-    scatterlut::NearLightPlan plan = scatterlut::default_near_light_plan(finite);
-    plan.n_T = plan.n_g = plan.n_r = finite ? 32 : 64;
-    plan.n_S = 17;
+    scatterlut::NearLightPlan plan = bench_near_light_plan(state);
     const scatterlut::Table iso = scatterlut::make_nearlight_table_layout(plan);
     plan.phase_g = static_cast<double>(state.range(1)) / 100.0;
     const scatterlut::Table hg = scatterlut::make_nearlight_table_layout(plan);

@@ -1,7 +1,8 @@
 /* scatterlut — near-light table kernel with a Henyey–Greenstein phase: at every node the
  * stored ln(E_g/D) (thick, S = ∞) or ln(E_g/(D·B))(T, g, r, S) (slab), E_g of
  * kernels/slut_nearlight_hg.h (Gath 2008 §4.2 with p_g(θ) under the integral), D =
- * slut_hg_nl_table_divisor(phase_g, T, g) (the phase at the entry point) and B = slut_nl_E_base
+ * slut_hg_nl_divisor(phase_g, T, g, S) (thick: the phase at the entry point; slab: an estimate
+ * of the attenuation-weighted mean of the phase along the path) and B = slut_nl_E_base
  * (the value base of the isotropic slab table). E_g/D ≤ E, so the stored values have the
  * isotropic tables' ranges (ln ≤ 0 thick, ln ≤ T slab) and one runtime front-end reads both.
  *
@@ -30,7 +31,6 @@ __kernel void nearlight_ln_Eg(__global double *out,
     slut_axis aS;
     aS.min = S_min; aS.max = S_max; aS.scale = S_scale; aS.warp = S_warp; aS.count = S_count;
     double T = T_nodes[iT], g = g_nodes[ig], r = r_nodes[ir];
-    double ln_divisor = log(slut_hg_nl_table_divisor(phase_g, T, g));
     double S[SLUT_NLG_MAX_S], S_over_T[SLUT_NLG_MAX_S], E[SLUT_NLG_MAX_S];
     if (S_count == 1) S[0] = S_min;
     else slut_nl_S_nodes(&aS, T, g, 0, S_count, S);
@@ -41,7 +41,7 @@ __kernel void nearlight_ln_Eg(__global double *out,
     else
         for (int iS = 0; iS < S_count; ++iS) E[iS] = slut_hg_nl_E(T, g, r, S_over_T[iS], phase_g, refine);
     for (int iS = 0; iS < S_count; ++iS) {
-        double ln_E = log(E[iS]) - ln_divisor;
+        double ln_E = log(E[iS]) - log(slut_hg_nl_divisor(phase_g, T, g, S[iS]));
         if (S_count > 1) ln_E -= log(slut_nl_E_base(T, r, S[iS]));
         out[(((size_t)iS * r_count + (size_t)ir) * g_count + ig) * T_count + iT] = ln_E;
     }

@@ -96,8 +96,12 @@ Table make_nearlight_table_layout(const NearLightPlan &plan) {
         c.name = plan.finite_thickness ? "ln_E_over_D_B" : "ln_E_over_D";
         c.meaning = std::string("ln(E_g/D") + (plan.finite_thickness ? "/B" : "") +
                     "): E_g = N_g/H, the inverse-square-weighted mean of psi*attenuation, psi = 4*pi*p the "
-                    "Henyey-Greenstein phase of asymmetry phase.g, D = psi at the entry point (cos theta = -g), "
-                    "times ((1+|phase.g|)/(1-|phase.g|))^3 when phase.g < 0 (slut_hg_nl_table_divisor)" +
+                    "Henyey-Greenstein phase of asymmetry phase.g, D = slut_hg_nl_divisor: " +
+                    (plan.finite_thickness
+                         ? std::string("((1+|phase.g|)/(1-|phase.g|))^3 times the attenuation-weighted mean of "
+                                       "psi along the path by 16-point Gauss-Legendre in theta")
+                         : std::string("psi at the entry point (cos theta = -g), for phase.g < 0 "
+                                       "psi_max*(psi0/psi_min)^(1-exp(-T))")) +
                     (plan.finite_thickness ? ", B = slut_nl_E_base (the isotropic slab table's base)" : "");
         t.extra[kExtraPhaseG] = phase_g_text(plan.phase_g);
     }
@@ -108,65 +112,19 @@ Table make_nearlight_table_layout(const NearLightPlan &plan) {
 
 namespace {
 
-// ln(E_g/ψ_max) (thick) or ln(E_g/(ψ_max·B)) (slab) at every node of an anisotropic layout:
-// kernels/nearlight_Eg.cl, one work-item per (r, g, T) node marching each S node.
-std::vector<double> integrate_nearlight_hg(Device &device, const Table &layout,
-                                           const std::function<void(double)> &progress, double tolerance) {
+// One near-light kernel over every node of `layout` (axis 0 fastest): the arguments (out, then
+// T, g, r node buffers with their counts, the S axis — a thick table passes one layer at
+// S = +inf —, the kernel's own `extra` arguments, the refine factor), launched as work-items
+// (dim0, g, T) in work-groups (local0, 1, 1), in a few slices of g when `progress` is given.
+std::vector<double> run_nearlight_kernel(Device &device, const Table &layout, const char *file, const char *name,
+                                         const std::function<void(cl::Kernel &, int &)> &extra, size_t dim0,
+                                         size_t local0, const std::function<void(double)> &progress,
+                                         double tolerance) {
     const bool finite_thickness = layout.axes.size() == 4;
-    const int n_T = layout.axes[0].map.count, n_g = layout.axes[1].map.count, n_r = layout.axes[2].map.count;
-    const int n_S = finite_thickness ? layout.axes[3].map.count : 1;
-    SLUT_CHECK_LE(n_S, 64); // SLUT_NLG_MAX_S of the kernel
-    const double phase_g = std::stod(layout.extra.at(kExtraPhaseG));
-    cl::Program &program = device.program("nearlight_Eg.cl");
-    cl::Kernel kernel(program, "nearlight_ln_Eg");
+    const int n_g = layout.axes[1].map.count, n_T = layout.axes[0].map.count;
+    cl::Program &program = device.program(file);
+    cl::Kernel kernel(program, name);
     std::vector<double> values(layout.node_count());
-    const cl::Buffer out = output_buffer(device, values);
-    int arg = 0;
-    kernel.setArg(arg++, out);
-    std::vector<cl::Buffer> node_buffers;
-    node_buffers.reserve(3);
-    for (size_t a = 0; a < 3; ++a) {
-        const slut_axis &map = layout.axes[a].map;
-        std::vector<double> nodes(static_cast<size_t>(map.count));
-        for (int i = 0; i < map.count; ++i) nodes[static_cast<size_t>(i)] = slut_axis_node(&map, i);
-        node_buffers.push_back(input_buffer(device, nodes));
-        kernel.setArg(arg++, node_buffers.back());
-        kernel.setArg(arg++, map.count);
-    }
-    const double inf = std::numeric_limits<double>::infinity();
-    const slut_axis thick = {inf, inf, 0.0, SLUT_WARP_LINEAR, 1};
-    set_axis_args(kernel, &arg, finite_thickness ? layout.axes[3].map : thick);
-    kernel.setArg(arg++, phase_g);
-    kernel.setArg(arg++, slut_nl_refine_for_tolerance(tolerance));
-    // Work-groups of one r row (n_r work-items): the kernel's private arrays are 64 doubles.
-    const int slices = progress ? std::min(n_g, 8) : 1, per_slice = (n_g + slices - 1) / slices;
-    for (int ig0 = 0; ig0 < n_g; ig0 += per_slice) {
-        const int count = std::min(per_slice, n_g - ig0);
-        device.queue().enqueueNDRangeKernel(kernel, cl::NDRange(0, static_cast<size_t>(ig0), 0),
-                                            cl::NDRange(static_cast<size_t>(n_r), static_cast<size_t>(count),
-                                                        static_cast<size_t>(n_T)),
-                                            cl::NDRange(static_cast<size_t>(n_r), 1, 1));
-        if (!progress) continue;
-        device.queue().finish();
-        progress(static_cast<double>(ig0 + count) / n_g);
-    }
-    wait_for_output(device, out, values);
-    device.kernels_ran("nearlight_Eg.cl");
-    return values;
-}
-
-} // namespace
-
-std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout,
-                                             const std::function<void(double)> &progress, double tolerance) {
-    if (layout.kind == kKindNearLightE3Hg || layout.kind == kKindNearLightE4Hg)
-        return integrate_nearlight_hg(device, layout, progress, tolerance);
-    const bool finite_thickness = layout.axes.size() == 4;
-    const int n_T = layout.axes[0].map.count, n_g = layout.axes[1].map.count, n_r = layout.axes[2].map.count;
-    const size_t n = layout.node_count();
-    cl::Program &program = device.program("nearlight_E.cl");
-    cl::Kernel kernel(program, "nearlight_ln_E");
-    std::vector<double> values(n);
     const cl::Buffer out = output_buffer(device, values);
     int arg = 0;
     kernel.setArg(arg++, out);
@@ -180,36 +138,59 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
         kernel.setArg(arg++, node_buffers.back());
         kernel.setArg(arg++, map.count);
     }
-    // A thick table has no S axis: the kernel reads one layer at S = +inf.
     const double inf = std::numeric_limits<double>::infinity();
     const slut_axis thick = {inf, inf, 0.0, SLUT_WARP_LINEAR, 1};
     set_axis_args(kernel, &arg, finite_thickness ? layout.axes[3].map : thick);
+    extra(kernel, arg);
     kernel.setArg(arg++, slut_nl_refine_for_tolerance(tolerance));
-    const size_t groups = static_cast<size_t>((n_r + SLUT_NL_MAX_LANES - 1) / SLUT_NL_MAX_LANES);
-    // The launch covers every node once: r groups × g × T work-items, each sweeping the S axis.
-    SLUT_CHECK_GE(groups * SLUT_NL_MAX_LANES, static_cast<size_t>(n_r));
-    SLUT_CHECK_EQ(n, static_cast<size_t>(n_T) * n_g * n_r * (finite_thickness ? layout.axes[3].map.count : 1));
-    SLUT_CHECK_LE(finite_thickness ? layout.axes[3].map.count : 1, SLUT_NL_MAX_SWEEP);
-    // One work-item per (r group, g, T) sweeps every S node (slut_nl_E_sweep). One work-item
-    // per work-group: PoCL keeps the private arrays of every work-item of a group on one
-    // thread's stack (E alone is SLUT_NL_MAX_SWEEP × SLUT_NL_MAX_LANES doubles, 8 KiB: its
-    // automatic groups of ~2000 overflowed it), and a work-item is a whole march, so the group
-    // overhead is negligible. With a progress callback the launch is cut into a few slices of
-    // g (one report each); without one it is a single launch: each slice ends in a wait for
-    // its slowest work-items with a core idle.
+    // With a progress callback the launch is cut into a few slices of g (one report each);
+    // without one it is a single launch: each slice ends in a wait for its slowest
+    // work-items with a core idle.
     const int slices = progress ? std::min(n_g, 8) : 1, per_slice = (n_g + slices - 1) / slices;
     for (int ig0 = 0; ig0 < n_g; ig0 += per_slice) {
         const int count = std::min(per_slice, n_g - ig0);
         device.queue().enqueueNDRangeKernel(kernel, cl::NDRange(0, static_cast<size_t>(ig0), 0),
-                                            cl::NDRange(groups, static_cast<size_t>(count), static_cast<size_t>(n_T)),
-                                            cl::NDRange(1, 1, 1));
+                                            cl::NDRange(dim0, static_cast<size_t>(count), static_cast<size_t>(n_T)),
+                                            cl::NDRange(local0, 1, 1));
         if (!progress) continue;
         device.queue().finish();
         progress(static_cast<double>(ig0 + count) / n_g);
     }
     wait_for_output(device, out, values);
-    device.kernels_ran("nearlight_E.cl");
+    device.kernels_ran(file);
     return values;
+}
+
+} // namespace
+
+std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout,
+                                             const std::function<void(double)> &progress, double tolerance) {
+    const bool finite_thickness = layout.axes.size() == 4;
+    const int n_T = layout.axes[0].map.count, n_g = layout.axes[1].map.count, n_r = layout.axes[2].map.count;
+    const int n_S = finite_thickness ? layout.axes[3].map.count : 1;
+    if (layout.kind == kKindNearLightE3Hg || layout.kind == kKindNearLightE4Hg) {
+        // kernels/nearlight_Eg.cl: one work-item per (r, g, T) node marching each S node, in
+        // work-groups of one r row (its private arrays are SLUT_NLG_MAX_S doubles).
+        SLUT_CHECK_LE(n_S, 64); // SLUT_NLG_MAX_S of the kernel
+        const double phase_g = table_phase_g(layout);
+        return run_nearlight_kernel(
+            device, layout, "nearlight_Eg.cl", "nearlight_ln_Eg",
+            [phase_g](cl::Kernel &kernel, int &arg) { kernel.setArg(arg++, phase_g); }, static_cast<size_t>(n_r),
+            static_cast<size_t>(n_r), progress, tolerance);
+    }
+    const size_t n = layout.node_count();
+    const size_t groups = static_cast<size_t>((n_r + SLUT_NL_MAX_LANES - 1) / SLUT_NL_MAX_LANES);
+    // The launch covers every node once: r groups × g × T work-items, each sweeping the S axis.
+    SLUT_CHECK_GE(groups * SLUT_NL_MAX_LANES, static_cast<size_t>(n_r));
+    SLUT_CHECK_EQ(n, static_cast<size_t>(n_T) * n_g * n_r * n_S);
+    SLUT_CHECK_LE(n_S, SLUT_NL_MAX_SWEEP);
+    // One work-item per (r group, g, T) sweeps every S node (slut_nl_E_sweep). One work-item
+    // per work-group: PoCL keeps the private arrays of every work-item of a group on one
+    // thread's stack (E alone is SLUT_NL_MAX_SWEEP × SLUT_NL_MAX_LANES doubles, 8 KiB: its
+    // automatic groups of ~2000 overflowed it), and a work-item is a whole march, so the group
+    // overhead is negligible.
+    return run_nearlight_kernel(
+        device, layout, "nearlight_E.cl", "nearlight_ln_E", [](cl::Kernel &, int &) {}, groups, 1, progress, tolerance);
 }
 
 namespace {

@@ -76,7 +76,11 @@ void add_per_phase_tables(const Scene &scene, const TableKind &kind, const Airli
     plan.notes.push_back(std::string(kind.name()) + ": one table per phase_g (" + std::to_string(made) +
                          "), not one with a g axis: linear interpolation in g holds the target " +
                          fmt("%.3g", first.target_rel) + " only at a g spacing <= " + fmt("%.3g", spacing) +
-                         " (measured at the scene's g; the forward peak of width (1-g)/(1+g) moves with g), so a g "
+                         " (measured at the scene's g" +
+                         (std::string(kind.name()).rfind("near_light", 0) == 0
+                              ? " on the airlight integral, which the near-light table holds at r = 0"
+                              : "") +
+                         "; the forward peak of width (1-g)/(1+g) moves with g), so a g "
                          "axis over [" + fmt("%g", lo) + ", " + fmt("%g", hi) + "] would need " +
                          std::to_string(g_nodes) + " g nodes, each the size of one table, against " +
                          std::to_string(made) + " table(s)");

@@ -17,22 +17,9 @@ void require(bool ok, const std::string &message) {
 }
 
 double phase_g_of(const Table &t) {
-    const bool e3 = t.kind == kKindNearLightE3Hg, e4 = t.kind == kKindNearLightE4Hg;
-    require(e3 || e4, "not an anisotropic near-light table (kind '" + t.kind + "')");
-    const auto it = t.extra.find(kExtraPhaseG);
-    require(it != t.extra.end(), "anisotropic near-light table: no \"" + std::string(kExtraPhaseG) + "\" entry");
-    double g = NAN;
-    try {
-        size_t used = 0;
-        g = std::stod(it->second, &used);
-        if (used != it->second.size()) g = NAN;
-    } catch (const std::exception &) {
-        g = NAN;
-    }
-    require(std::isfinite(g), "anisotropic near-light table: \"" + std::string(kExtraPhaseG) + "\" = '" + it->second +
-                                  "' is not a number");
-    check_phase_g(g);
-    return g;
+    require(t.kind == kKindNearLightE3Hg || t.kind == kKindNearLightE4Hg,
+            "not an anisotropic near-light table (kind '" + t.kind + "')");
+    return table_phase_g(t);
 }
 
 // The same values read as the isotropic kind: kind and channel name of nearlight.hpp.
@@ -47,12 +34,10 @@ Table isotropic_view(const Table &t) {
     return v;
 }
 
-// Whether the table has the query's parameters (validated; *T, *g: its T and near-light g).
-bool in_table(const NearLightTable &t, const NearLightQuery &q, double *T, double *g) {
-    const NearLightParams p = near_light_params(q);
-    *T = p.T;
-    *g = p.g;
-    return !p.light_below && p.T > 0.0 && t.covers(p.T, p.g, p.r, p.S);
+// Whether the table has the query's parameters (validated; *p: its T, near-light g, r, S).
+bool in_table(const NearLightTable &t, const NearLightQuery &q, NearLightParams *p) {
+    *p = near_light_params(q);
+    return !p->light_below && p->T > 0.0 && t.covers(p->T, p->g, p->r, p->S);
 }
 
 // The raw geometry of slut_nl_params (eye-side refraction as near_light_params).
@@ -66,6 +51,13 @@ slut_nl_params geometry(const NearLightQuery &q) {
     return p;
 }
 
+// q with one channel's coefficients (1/m).
+NearLightQuery with_coefficients(NearLightQuery q, double sigma_s_per_m, double sigma_a_per_m) {
+    q.sigma_s_per_m = sigma_s_per_m;
+    q.sigma_a_per_m = sigma_a_per_m;
+    return q;
+}
+
 } // namespace
 
 std::string phase_g_text(double phase_g) {
@@ -75,9 +67,9 @@ std::string phase_g_text(double phase_g) {
 }
 
 std::string near_light_hg_file_stem(bool finite_thickness, double phase_g) {
-    char text[40];
-    std::snprintf(text, sizeof text, "%.6g", phase_g);
-    return std::string(finite_thickness ? "near_light_E4_g" : "near_light_E3_g") + text;
+    const std::string airlight = airlight_fg_stem(phase_g); // "airlight_Fg_g<g>"
+    return std::string(finite_thickness ? kKindNearLightE4Hg : kKindNearLightE3Hg) +
+           airlight.substr(std::char_traits<char>::length(kKindAirlightFg));
 }
 
 double near_light_radiance_thin(const NearLightQuery &q, double phase_g) {
@@ -103,12 +95,12 @@ double near_light_radiance_distant(const NearLightQuery &q, double phase_g) {
 NearLightHgTable::NearLightHgTable(Table table)
     : table_(std::move(table)), phase_g_(phase_g_of(table_)), iso_(isotropic_view(table_)) {}
 
-double NearLightHgTable::divisor(double T, double g) const { return slut_hg_nl_table_divisor(phase_g_, T, g); }
+double NearLightHgTable::divisor(double T, double g, double S) const { return slut_hg_nl_divisor(phase_g_, T, g, S); }
 
 double NearLightHgTable::node_E(const size_t *node) const {
     double p[4];
     iso_.node_params(node, p);
-    return divisor(p[0], p[1]) * iso_.node_E(node);
+    return divisor(p[0], p[1], p[3]) * iso_.node_E(node);
 }
 
 double NearLightHgTable::E(double T, double g, double r, double S) const {
@@ -116,39 +108,32 @@ double NearLightHgTable::E(double T, double g, double r, double S) const {
         const double S_over_T = (S > 1e300) ? HUGE_VAL : S / T;
         return slut_hg_nl_E(T > 0.0 ? T : 0.0, g, r, T > 0.0 ? S_over_T : HUGE_VAL, phase_g_, 1.0);
     }
-    return divisor(T, g) * iso_.E(T, g, r, S);
+    return divisor(T, g, S) * iso_.E(T, g, r, S);
 }
 
 double NearLightHgTable::radiance(const NearLightQuery &q) const {
-    double T, g;
-    if (!in_table(iso_, q, &T, &g)) return near_light_radiance_exact(q, phase_g_);
+    NearLightParams p;
+    if (!in_table(iso_, q, &p)) return near_light_radiance_exact(q, phase_g_);
     // NearLightTable::radiance is linear in the stored E: E_g/D there.
-    return divisor(T, g) * iso_.radiance(q);
+    return divisor(p.T, p.g, p.S) * iso_.radiance(q);
 }
 
 Rgb NearLightHgTable::radiance_rgb(const NearLightQuery &q, const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m) const {
-    for (int c = 0; c < 3; ++c) {
-        require(sigma_s_per_m[c] >= 0.0 && std::isfinite(sigma_s_per_m[c]),
-                "sigma_s must be finite and >= 0 (1/m) in every channel");
-        require(sigma_a_per_m[c] >= 0.0 && std::isfinite(sigma_a_per_m[c]),
-                "sigma_a must be finite and >= 0 (1/m) in every channel");
-    }
-    Rgb out{};
-    for (int c = 0; c < 3; ++c) {
-        NearLightQuery channel = q;
-        channel.sigma_s_per_m = sigma_s_per_m[c];
-        channel.sigma_a_per_m = sigma_a_per_m[c];
-        out[c] = radiance(channel);
-    }
-    return out;
+    for (int c = 0; c < 3; ++c)
+        require(sigma_s_per_m[c] >= 0.0 && std::isfinite(sigma_s_per_m[c]) && sigma_a_per_m[c] >= 0.0 &&
+                    std::isfinite(sigma_a_per_m[c]),
+                "sigma_s and sigma_a must be finite and >= 0 (1/m) in every channel");
+    return {radiance(with_coefficients(q, sigma_s_per_m[0], sigma_a_per_m[0])),
+            radiance(with_coefficients(q, sigma_s_per_m[1], sigma_a_per_m[1])),
+            radiance(with_coefficients(q, sigma_s_per_m[2], sigma_a_per_m[2]))};
 }
 
 void NearLightHgTable::radiance(const NearLightQuery *queries, size_t count, double *out) const {
     iso_.radiance(queries, count, out); // checks every query before writing
     for (size_t i = 0; i < count; ++i) {
-        double T, g;
-        out[i] = in_table(iso_, queries[i], &T, &g) ? divisor(T, g) * out[i]
-                                                    : near_light_radiance_exact(queries[i], phase_g_);
+        NearLightParams p;
+        out[i] = in_table(iso_, queries[i], &p) ? divisor(p.T, p.g, p.S) * out[i]
+                                                : near_light_radiance_exact(queries[i], phase_g_);
     }
 }
 

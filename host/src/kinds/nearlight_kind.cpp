@@ -41,8 +41,7 @@ constexpr double kEFloor = 1e-6;
 struct Demand {
     Span T, S;
     double relative_error = HUGE_VAL;
-    double phase_g = 0.0; // anisotropic kinds: the g of the table (the first lit medium's)
-    bool has_phase_g = false;
+    double phase_g = 0.0; // anisotropic kinds: the g of the table (its media's)
 };
 
 const NearLightPlan &plan_of(const std::any &plan) { return std::any_cast<const NearLightPlan &>(plan); }
@@ -63,28 +62,19 @@ public:
     void add_demand(const Scene &scene, const SceneMedium &m, const SceneLight &l, std::any &state,
                     PlannedTable &t) const override {
         if (m.viewer_inside || !(finite_ ? m.has_thickness : m.thick)) return;
-        // Isotropic media: the isotropic kinds (today's tables); each anisotropic medium: the
-        // anisotropic kind of its g. A plan holds one table per kind: a second g is reported,
-        // not planned (its queries are then integrated exactly at run time).
-        if (anisotropic_ != (m.phase_g != 0.0)) return;
+        // Isotropic media: the isotropic kinds (today's tables); anisotropic ones: the _hg kind,
+        // which the planner asks with the media of one g at a time (per_phase()).
+        if (anisotropic_ != !m.isotropic()) return;
         if (!state.has_value()) state = Demand{};
         Demand &d = std::any_cast<Demand &>(state);
-        if (anisotropic_) {
-            if (d.has_phase_g && m.phase_g != d.phase_g) {
-                const std::string note = "medium '" + m.name + "' (phase_g = " + fmt("%.6g", m.phase_g) +
-                                         ") needs a table of its own g: not planned (one " + name() +
-                                         " table per plan; its queries are integrated exactly)";
-                if (std::find(t.domain_notes.begin(), t.domain_notes.end(), note) == t.domain_notes.end())
-                    t.domain_notes.push_back(note);
-                return;
-            }
-            d.phase_g = m.phase_g;
-            d.has_phase_g = true;
-        }
-        const double sigma_t = m.sigma_t_per_m(), d_lo = l.distance_m.min, d_hi = l.distance_m.max;
-        const std::string T_text = "T = sigma_t*l in [" + fmt("%.4g", sigma_t * d_lo) + ", " +
-                                   fmt("%.4g", sigma_t * d_hi) + "]";
-        d.T.add(sigma_t * d_lo, sigma_t * d_hi);
+        d.phase_g = m.phase_g;
+        // A coloured medium: the lower ends from its clearest channel, the upper from its densest
+        // (one table serves every channel; a grey medium has sigma_t_lo == sigma_t).
+        const double sigma_t = m.sigma_t_per_m(), sigma_t_lo = m.sigma_t_min_per_m();
+        const double d_lo = l.distance_m.min, d_hi = l.distance_m.max;
+        const std::string T_text = "T = sigma_t*l in [" + fmt("%.4g", sigma_t_lo * d_lo) + ", " +
+                                   fmt("%.4g", sigma_t * d_hi) + "]" + (m.coloured ? " (over its channels)" : "");
+        d.T.add(sigma_t_lo * d_lo, sigma_t * d_hi);
         d.relative_error = std::min(d.relative_error, m.relative_error);
         if (!finite_) {
             t.requested_by.push_back({m.name, l.name, "thick, seen from outside: " + T_text});
@@ -93,7 +83,7 @@ public:
         // The path inside along the view ray: the thickness, longer by 1/cos at the largest
         // view angle (a slab seen obliquely).
         const double view = scene.view.max_view_angle_deg * SLUT_PI / 180.0;
-        const double s_lo = sigma_t * m.thickness_m.min, s_hi = sigma_t * m.thickness_m.max / std::cos(view);
+        const double s_lo = sigma_t_lo * m.thickness_m.min, s_hi = sigma_t * m.thickness_m.max / std::cos(view);
         d.S.add(s_lo, s_hi);
         t.requested_by.push_back({m.name, l.name,
                                   "finite thickness, seen from outside: " + T_text + ", S = sigma_t*s in [" +
@@ -124,6 +114,8 @@ public:
         p.n_S = half_count(p.n_S);
         p.phase_g = d.phase_g;
         if (anisotropic_) {
+            t.phase_g = d.phase_g;
+            t.stem = near_light_hg_file_stem(finite_, d.phase_g);
             p.g_max = near_light_hg_g_max(p.phase_g);
             if (p.g_max < 1.0) {
                 if (p.g_min > p.g_max - 0.1) p.g_max = 1.0; // the scene's g lie above: keep them, measured
@@ -135,6 +127,8 @@ public:
         t.target_rel = d.relative_error;
         t.plan = p;
     }
+
+    bool per_phase() const override { return anisotropic_; }
 
     const char *target_reason() const override { return "the radiance error: L = sigma_s p I0 sigma_t H E, H exact"; }
 

@@ -3,8 +3,10 @@
 //   L = σ_s/(4π) · I0 · σ_t · H(T, g, r, S) · E_g(T, g, r, S),
 // E_g = the ĥ⁻²-weighted mean of ψ·attenuation, ψ = 4π p_{phase_g}, E_g ∈ (0, ψ_max]. A table
 // stores ln(E_g/D) (kind near_light_E3_hg, S = ∞) or ln(E_g/(D·B)) (near_light_E4_hg, B the
-// slab table's value base), D = slut_hg_nl_table_divisor(phase_g, T, g) the phase at the entry
-// point (times ((1+|g|)/(1−|g|))³ for phase_g < 0), on the axes of the isotropic tables, and
+// slab table's value base), D = slut_hg_nl_divisor(phase_g, T, g, S): thick, the phase at the
+// entry point (for phase_g < 0 blended towards ψ_max at small T); slab, a constant times a
+// 16-point estimate of the attenuation-weighted mean of ψ along the path; on the axes of the
+// isotropic tables, and
 // records its g as the `extra` key "phase.g". D carries the sharp dependence on the near-light
 // g near the phase's peak; the stored values have the isotropic tables' ranges, and the sampler
 // reads them through NearLightTable (the same front-end, SIMD paths included).
@@ -13,6 +15,7 @@
 #include <cstddef>
 #include <string>
 
+#include "scatterlut/airlight_hg.hpp"
 #include "scatterlut/anisotropic.hpp"
 #include "scatterlut/nearlight.hpp"
 #include "scatterlut/table.hpp"
@@ -21,11 +24,13 @@ namespace scatterlut {
 
 inline constexpr const char *kKindNearLightE3Hg = "near_light_E3_hg"; // E_g(T, g, r), S = ∞
 inline constexpr const char *kKindNearLightE4Hg = "near_light_E4_hg"; // E_g(T, g, r, S) on axes (T, g, r, q)
-inline constexpr const char *kExtraPhaseG = "phase.g"; // Table::extra key: the Henyey–Greenstein g
+inline constexpr const char *kExtraPhaseG = kPhaseGKey; // Table::extra key: the Henyey–Greenstein g
 
 // The text a table records for `phase_g` ("%.17g": it reads back to the same double).
 std::string phase_g_text(double phase_g);
-// The file stem of an anisotropic near-light table: near_light_E3_g0.85 (g with "%.6g").
+// The file stem of an anisotropic near-light table: its kind and g as the airlight table of
+// the same g writes it (airlight_fg_stem: the fewest digits that read back as g), e.g.
+// "near_light_E3_hg_g0.85", "near_light_E4_hg_g-0.5".
 std::string near_light_hg_file_stem(bool finite_thickness, double phase_g);
 
 // Closed forms with the phase, needing no table (both approximations, stated):
@@ -64,8 +69,8 @@ public:
     const Table &table() const { return table_; }
     // The isotropic-kind view of the stored values (E_g/D), for the shared measurements.
     const NearLightTable &scaled() const { return iso_; }
-    // D at (T, g) (kernels/slut_nearlight_hg.h).
-    double divisor(double T, double g) const;
+    // D at (T, g, S) (slut_hg_nl_divisor, kernels/slut_nearlight_hg.h; S = +inf: thick).
+    double divisor(double T, double g, double S) const;
 
 private:
     Table table_;
