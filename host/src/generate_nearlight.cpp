@@ -64,7 +64,9 @@ NearLightPlan default_near_light_plan(bool finite_thickness) {
     return plan;
 }
 
-double near_light_hg_g_max(double phase_g) { return phase_g < -0.5 ? 0.85 : 1.0; }
+double near_light_hg_g_max(double phase_g, bool finite_thickness) {
+    return (phase_g < -0.5 || (finite_thickness && phase_g <= -0.5)) ? 0.85 : 1.0;
+}
 
 Table make_nearlight_table_layout(const NearLightPlan &plan) {
     const bool hg = plan.phase_g != 0.0;

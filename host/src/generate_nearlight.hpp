@@ -50,7 +50,9 @@ NearLightPlan default_near_light_plan(bool finite_thickness);
 // is the mean of ψ over the last α = acos g of scattering angle and varies with α/α itself,
 // which the √(1 + g) axis does not resolve; above g = 0.85 (α < 32°) such tables integrate
 // exactly (measured: g = −0.9, 96 × 80 × 64 nodes, 0.6 % max with it, 36 % without; docs/NEARLIGHT.md).
-double near_light_hg_g_max(double phase_g);
+// The slab tables stop there from phase_g ≤ −0.5 on (measured: g = −0.5, the hard corners
+// 1.2 % at T = T_max, g = 0.87 with g up to 1).
+double near_light_hg_g_max(double phase_g, bool finite_thickness);
 
 Table make_nearlight_table_layout(const NearLightPlan &plan);
 

@@ -50,7 +50,7 @@ NearLightPlan plan_of(bool finite, double phase_g, int n_T, int n_g, int n_r, in
     plan.T_min = 1e-2;
     plan.T_max = 10.0;
     plan.g_min = -0.99;
-    plan.g_max = scatterlut::near_light_hg_g_max(phase_g);
+    plan.g_max = scatterlut::near_light_hg_g_max(phase_g, finite);
     plan.r_max = 2.0; // a view angle up to 60°
     plan.S_min = 1e-2;
     plan.S_max = 10.0;
@@ -233,11 +233,12 @@ TEST(AnisotropicNearLightTable, SlabRadianceMatchesExact) {
     for (double phase_g : kPhaseGs) EXPECT_LE(radiance_error(true, phase_g), 1e-2) << "phase_g " << phase_g;
 }
 
-// The hard corners (T at its ends, g at g_min, g_min + 1e-9 and 1, r at 0, 1e-12 and r_max)
-// of the thick tables: within 1 % and never NaN, per g (the slab tables: see above).
+// The hard corners (T at its ends, g at g_min, g_min + 1e-9 and 1, r at 0, 1e-12 and r_max;
+// slabs: S at its ends and at the light's foot point) of the thick and slab tables: within 1 %
+// and never NaN, per g.
 TEST(AnisotropicNearLightTable, HardCorners) {
     for (double phase_g : kPhaseGs)
-        for (bool finite : {false}) {
+        for (bool finite : {false, true}) {
             const NearLightHgTable table(radiance_table(finite, phase_g));
             const scatterlut::SamplingStats c = scatterlut::measure_nearlight_corners(table, 4000, 3);
             std::printf("phase_g %5.2f %s: corners max %.2e p99 %.2e (%zu points)\n", phase_g, finite ? "E4" : "E3",

@@ -116,12 +116,12 @@ public:
         if (anisotropic_) {
             t.phase_g = d.phase_g;
             t.stem = near_light_hg_file_stem(finite_, d.phase_g);
-            p.g_max = near_light_hg_g_max(p.phase_g);
+            p.g_max = near_light_hg_g_max(p.phase_g, finite_);
             if (p.g_max < 1.0) {
                 if (p.g_min > p.g_max - 0.1) p.g_max = 1.0; // the scene's g lie above: keep them, measured
                 else
                     t.domain_notes.push_back("g <= " + fmt("%.3g", p.g_max) + " (phase_g = " + fmt("%.6g", p.phase_g) +
-                                             " < -0.5: the backward peak at g -> 1 is integrated exactly)");
+                                             ": its backward peak at g -> 1 is integrated exactly, measured)");
             }
         }
         t.target_rel = d.relative_error;
