@@ -227,12 +227,17 @@ constexpr double kNearLightBoostTol = 1e-6;
 
 // As above for E. Accuracy: device and baseline at the sampled nodes against the
 // long-double gauss_kronrod<61> reference (tests/nearlight_reference.hpp).
+// The near-light benches' layouts: E3 64³ (range(0) = 3) or E4 32³ × 17 (range(0) = 4).
+scatterlut::NearLightPlan bench_near_light_plan(const benchmark::State &state) {
+    scatterlut::NearLightPlan plan = scatterlut::default_near_light_plan(state.range(0) == 4);
+    plan.n_T = plan.n_g = plan.n_r = plan.finite_thickness ? 32 : 64;
+    plan.n_S = 17;
+    return plan;
+}
+
 void BM_NearLightGeneration(benchmark::State &state) {
     const bool finite = state.range(0) == 4;
-    scatterlut::NearLightPlan plan = scatterlut::default_near_light_plan(finite);
-    plan.n_T = plan.n_g = plan.n_r = finite ? 32 : 64;
-    plan.n_S = 17;
-    const scatterlut::Table layout = scatterlut::make_nearlight_table_layout(plan);
+    const scatterlut::Table layout = scatterlut::make_nearlight_table_layout(bench_near_light_plan(state));
     const auto &ax = layout.axes;
     const int n_S = finite ? ax[3].map.count : 1;
     const auto picks = sample_nodes<4>({ax[0].map.count, ax[1].map.count, ax[2].map.count, n_S}, 300, 11);
@@ -292,6 +297,41 @@ void BM_NearLightGeneration(benchmark::State &state) {
     state.counters["boost_evals_per_cell"] = static_cast<double>(evals) / static_cast<double>(picks.size());
 }
 BENCHMARK(BM_NearLightGeneration)->Arg(3)->Arg(4)->Iterations(5)->Unit(benchmark::kMillisecond);
+
+// The anisotropic near-light tables (kernels/nearlight_Eg.cl, phase_g = range(1)/100) against
+// the isotropic ones (kernels/nearlight_E.cl) on the same axes (the layouts of
+// BM_NearLightGeneration), in alternating rounds of the same run: iso_ms, hg_ms (medians) and
+// hg_over_iso, the median of the per-round ratios [min, max].
+void BM_NearLightHgGeneration(benchmark::State &state) {
+    scatterlut::NearLightPlan plan = bench_near_light_plan(state);
+    const scatterlut::Table iso = scatterlut::make_nearlight_table_layout(plan);
+    plan.phase_g = static_cast<double>(state.range(1)) / 100.0;
+    const scatterlut::Table hg = scatterlut::make_nearlight_table_layout(plan);
+    scatterlut::integrate_nearlight_ln_E(device(), iso); // warm-up: JIT
+    scatterlut::integrate_nearlight_ln_E(device(), hg);
+    std::vector<double> iso_s, hg_s, ratio;
+    for (auto _ : state) {
+        const bool hg_first = (iso_s.size() % 2) == 1; // alternate which runs first
+        for (int k = 0; k < 2; ++k) {
+            const bool run_hg = (k == 0) == hg_first;
+            const auto t0 = Clock::now();
+            benchmark::DoNotOptimize(scatterlut::integrate_nearlight_ln_E(device(), run_hg ? hg : iso));
+            (run_hg ? hg_s : iso_s).push_back(seconds_since(t0));
+        }
+        ratio.push_back(hg_s.back() / iso_s.back());
+    }
+    state.counters["iso_ms"] = 1e3 * median(iso_s);
+    state.counters["hg_ms"] = 1e3 * median(hg_s);
+    state.counters["hg_over_iso"] = median(ratio);
+    state.counters["hg_over_iso_min"] = *std::min_element(ratio.begin(), ratio.end());
+    state.counters["hg_over_iso_max"] = *std::max_element(ratio.begin(), ratio.end());
+}
+BENCHMARK(BM_NearLightHgGeneration)
+    ->Args({3, 85})
+    ->Args({4, 85})
+    ->Args({3, -90})
+    ->Iterations(5)
+    ->Unit(benchmark::kMillisecond);
 
 // ------------------------------------------------------------------ runtime: lookups and radiance
 

@@ -48,6 +48,90 @@ SLUT_FN double slut_hg_nl_psi(double phase_g, double dl, double eta, double sg2)
     return slut_hg_psi_half(phase_g, s2, c2);
 }
 
+/* E_g at n ascending slab depths in one march (the 4-D table's S nodes at one (T, g, r); one
+ * depth: the march of slut_hg_nl_E below, whose rules it follows):
+ * S_over_T[k] = S_k/T, 0 < S_0 ≤ … ≤ S_{n−1} (the last may be > 1e300: thick). The panels of
+ * slut_hg_nl_E (below), each also cut at every S_k; the raw sum N_g·T is recorded at each S_k and
+ * divided by H there. The tail rule is slut_hg_nl_E's to the last depth: once it stops the
+ * march, the depths not reached take the sum at the stop (their remainder is a part of the
+ * bounded one). Not for g = −1 with S ≥ T (the caller uses slut_hg_nl_E there). */
+SLUT_FN void slut_hg_nl_E_sweep(double T, double g, double r, const double *S_over_T, int n, double phase_g,
+                                double refine, double *E_out) {
+    g = slut_clamp(g, -1.0, 1.0);
+    double sg2 = (1.0 - fabs(g)) * (1.0 + fabs(g)), sg = sqrt(sg2);
+    double tau_end = (S_over_T[n - 1] > 1e300) ? SLUT_HUGE_VAL : S_over_T[n - 1];
+    int finite_S = !(tau_end > 1e300);
+    int r_inf = !(r <= 1e300);
+    double A = 1.0 + (SLUT_HG_NL_ELLIPSE - 1.0) * refine;
+    double efolds = SLUT_HG_NL_EFOLDS / refine;
+    double tail_eps = SLUT_HG_NL_TAIL_EPS / pow(refine, 15.0);
+    double psi_back = slut_hg_psi_backward(phase_g);
+    double tau = 0.0, dl = g, d_end = tau_end + g, sum = 0.0;
+    int carry_d = 0, next = 0;
+    for (int panel = 0; panel < SLUT_HG_NL_MAX_PANELS && next < n; ++panel) {
+        if (!carry_d && g < 0.0 && tau >= -0.5 * g) carry_d = 1;
+        double eta2 = dl * dl + sg2, eta = sqrt(eta2);
+        if (panel > 0) {
+            double q0 = r_inf ? 0.0 : ((r > 0.0) ? tau / (tau + r) : 1.0);
+            double attenuation = exp(-T * (tau + eta * q0));
+            double psi_rest = (phase_g >= 0.0) ? slut_hg_nl_psi(phase_g, dl, eta, sg2) : psi_back;
+            double len = finite_S ? (carry_d ? d_end - dl : tau_end - tau) : SLUT_HUGE_VAL;
+            double rest = slut_nl_inv_square_integral(len, eta2, dl, sg);
+            if (dl >= 0.0 && T > 0.0) rest = fmin(rest, 1.0 / (T * eta2));
+            if (attenuation * psi_rest * rest <= tail_eps * sum) break;
+        }
+        double h = 2.0 * (A * eta + dl) / (A * A - 1.0);
+        double k_rate = (r > 0.0 && !r_inf) ? r / ((tau + r) * (tau + r)) : 0.0;
+        if (r > 0.0 && !r_inf && T * r * fmax(eta / (tau + r), 1.0) > 1e-17) h = fmin(h, 2.0 * (tau + r) / (A - 1.0));
+        if (T > 0.0) {
+            double L = efolds / T, B = 2.0 + 2.0 * eta * k_rate;
+            h = fmin(h, (2.0 * L / B) / (1.0 + sqrt(1.0 + (8.0 * L / B) * (k_rate / B))));
+        }
+        if (!(h > 0.0)) break;
+        int at_node = 0;
+        if (S_over_T[next] <= 1e300) {
+            double remaining = carry_d ? (S_over_T[next] + g) - dl : S_over_T[next] - tau;
+            if (h >= remaining) {
+                h = fmax(remaining, 0.0);
+                at_node = 1;
+            }
+        }
+        double half_len = 0.5 * h, part = 0.0;
+        for (int k = 0; k < 16; ++k) {
+            double x = (k < 8) ? -slut_gl16_x[k] : slut_gl16_x[k - 8];
+            double off = half_len + half_len * x;
+            double tn = carry_d ? (dl + off) - g : tau + off;
+            double dn = carry_d ? dl + off : tn + g;
+            double en2 = dn * dn + sg2, en = sqrt(en2);
+            double q = r_inf ? 0.0 : ((r > 0.0) ? tn / (tn + r) : 1.0);
+            part += slut_gl16_w[(k < 8) ? k : k - 8] * slut_hg_nl_psi(phase_g, dn, en, sg2) *
+                    exp(-T * (tn + en * q)) / en2;
+        }
+        sum += half_len * part;
+        if (at_node) { /* land exactly on the node */
+            double S_node = S_over_T[next];
+            if (carry_d) {
+                dl = S_node + g;
+                tau = dl - g;
+            } else {
+                tau = S_node;
+                dl = tau + g;
+            }
+            while (next < n && S_over_T[next] <= S_node) {
+                E_out[next] = sum / slut_nl_H_scaled(g, S_over_T[next]);
+                ++next;
+            }
+        } else if (carry_d) {
+            dl += h;
+            tau = dl - g;
+        } else {
+            tau += h;
+            dl = tau + g;
+        }
+    }
+    for (; next < n; ++next) E_out[next] = sum / slut_nl_H_scaled(g, (S_over_T[next] > 1e300) ? SLUT_HUGE_VAL : S_over_T[next]);
+}
+
 /* E_g(T, g, r, S) by composite 16-point Gauss–Legendre in τ = t/T, with the lengths given as
  * S/T (S_over_T > 1e300: a thick medium), so that T = 0 (σ_t → 0: E_g is then the
  * ĥ^{−2}-weighted mean of ψ alone) needs no special case.
@@ -70,69 +154,74 @@ SLUT_FN double slut_hg_nl_psi(double phase_g, double dl, double eta, double sg2)
  * reached with θ = 0). */
 SLUT_FN double slut_hg_nl_E(double T, double g, double r, double S_over_T, double phase_g, double refine) {
     g = slut_clamp(g, -1.0, 1.0);
-    double sg2 = (1.0 - fabs(g)) * (1.0 + fabs(g)), sg = sqrt(sg2);
+    double sg2 = (1.0 - fabs(g)) * (1.0 + fabs(g));
     double tau_end = (S_over_T > 1e300) ? SLUT_HUGE_VAL : S_over_T;
-    int finite_S = !(tau_end > 1e300);
-    int r_inf = !(r <= 1e300);
     if (!(tau_end > 0.0)) return slut_hg_nl_psi(phase_g, g, 1.0, sg2) * ((r > 0.0) ? 1.0 : exp(-T));
-    if (sg == 0.0 && g < 0.0 && tau_end >= 1.0) return slut_hg_psi_forward(phase_g) * exp(-T);
-    double inv_H = 1.0 / slut_nl_H_scaled(g, finite_S ? tau_end : SLUT_HUGE_VAL);
-    double A = 1.0 + (SLUT_HG_NL_ELLIPSE - 1.0) * refine;
-    double efolds = SLUT_HG_NL_EFOLDS / refine;
-    double tail_eps = SLUT_HG_NL_TAIL_EPS / pow(refine, 15.0);
-    double psi_back = slut_hg_psi_backward(phase_g);
-    double tau = 0.0, dl = g, d_end = tau_end + g, sum = 0.0;
-    int carry_d = 0;
-    for (int panel = 0; panel < SLUT_HG_NL_MAX_PANELS; ++panel) {
-        if (!carry_d && g < 0.0 && tau >= -0.5 * g) carry_d = 1;
-        double eta2 = dl * dl + sg2, eta = sqrt(eta2);
-        if (panel > 0) {
-            double q0 = r_inf ? 0.0 : ((r > 0.0) ? tau / (tau + r) : 1.0);
-            double attenuation = exp(-T * (tau + eta * q0));
-            double psi_rest = (phase_g >= 0.0) ? slut_hg_nl_psi(phase_g, dl, eta, sg2) : psi_back;
-            double len = finite_S ? (carry_d ? d_end - dl : tau_end - tau) : SLUT_HUGE_VAL;
-            double rest = inv_H * slut_nl_inv_square_integral(len, eta2, dl, sg);
-            if (dl >= 0.0 && T > 0.0) rest = fmin(rest, inv_H / (T * eta2));
-            if (attenuation * psi_rest * rest <= tail_eps * sum) break;
-        }
-        double h = 2.0 * (A * eta + dl) / (A * A - 1.0);
-        double k_rate = (r > 0.0 && !r_inf) ? r / ((tau + r) * (tau + r)) : 0.0;
-        if (r > 0.0 && !r_inf && T * r * fmax(eta / (tau + r), 1.0) > 1e-17) h = fmin(h, 2.0 * (tau + r) / (A - 1.0));
-        if (T > 0.0) {
-            double L = efolds / T, B = 2.0 + 2.0 * eta * k_rate;
-            h = fmin(h, (2.0 * L / B) / (1.0 + sqrt(1.0 + (8.0 * L / B) * (k_rate / B))));
-        }
-        if (!(h > 0.0)) break; /* cannot happen for η > 0; never loop on it */
-        int last = 0;
-        if (finite_S) {
-            double remaining = carry_d ? d_end - dl : tau_end - tau;
-            if (h >= remaining) {
-                h = fmax(remaining, 0.0);
-                last = 1;
-            }
-        }
-        double half_len = 0.5 * h, part = 0.0;
-        for (int k = 0; k < 16; ++k) {
-            double x = (k < 8) ? -slut_gl16_x[k] : slut_gl16_x[k - 8];
-            double off = half_len + half_len * x;
-            double tn = carry_d ? (dl + off) - g : tau + off;
-            double dn = carry_d ? dl + off : tn + g;
-            double en2 = dn * dn + sg2, en = sqrt(en2);
-            double q = r_inf ? 0.0 : ((r > 0.0) ? tn / (tn + r) : 1.0);
-            part += slut_gl16_w[(k < 8) ? k : k - 8] * slut_hg_nl_psi(phase_g, dn, en, sg2) *
-                    exp(-T * (tn + en * q)) / en2;
-        }
-        sum += half_len * inv_H * part;
-        if (last) break;
-        if (carry_d) {
-            dl += h;
-            tau = dl - g;
-        } else {
-            tau += h;
-            dl = tau + g;
-        }
+    if (sg2 == 0.0 && g < 0.0 && tau_end >= 1.0) return slut_hg_psi_forward(phase_g) * exp(-T);
+    double E;
+    slut_hg_nl_E_sweep(T, g, r, &tau_end, 1, phase_g, refine, &E);
+    return E;
+}
+
+/* The divisor D(T, g) of the anisotropic near-light tables (kernels/nearlight_Eg.cl stores
+ * ln(E_g/D), the runtime multiplies by it). ψ0 = ψ(θ(0)), cos θ(0) = −g, the phase at the entry
+ * point, carries E_g's sharp dependence on g near the phase's peak once the attenuation gathers
+ * at the entry point (E_g → ψ0·E as T grows); for small T, E_g is the mean of ψ over a long
+ * path and smooth in g. θ grows along the ray, so:
+ *  - g_hg ≥ 0 (ψ falls along the ray): E_g ≤ ψ0·E, D = ψ0;
+ *  - g_hg < 0 (ψ rises along the ray towards ψ_max = ψ(π)): E_g ≤ ψ_max·E, D = ψ_max·(ψ0/ψ_min)^w
+ *    with w = 1 − e^{−T} (ψ_max at small T, ψ0 times a constant at large T; ≥ ψ_max).
+ * E_g/D ≤ E: the stored values have the isotropic tables' ranges (ln ≤ 0 thick; ln(·/B) ≤ T slab). */
+SLUT_FN double slut_hg_nl_table_divisor(double phase_g, double T, double g) {
+    g = slut_clamp(g, -1.0, 1.0);
+    double sg2 = (1.0 - fabs(g)) * (1.0 + fabs(g));
+    double psi0 = slut_hg_nl_psi(phase_g, g, 1.0, sg2);
+    if (phase_g >= 0.0) return psi0;
+    double w = -expm1(-fmax(T, 0.0));
+    return slut_hg_psi_max(phase_g) * pow(psi0 / slut_hg_psi_forward(phase_g), w);
+}
+
+/* The divisor of the slab tables (kind near_light_E4_hg, finite S): E_g/E itself — the mean of
+ * ψ over the path weighted by ĥ^{−2} and the attenuation — estimated by one 16-point
+ * Gauss–Legendre rule in the scattering angle instead of in depth. With ĥ^{−2}dτ = dθ/√(1 − g²)
+ * the path [0, S/T] (units of l) maps to θ ∈ [θ(0), θ(S/T)], θ(τ) = atan2(√(1 − g²), −(τ + g)),
+ * a finite interval even for a long slab; at each node τ = −√(1 − g²)·cot θ − g, η = √(1 − g²)/sin θ
+ * and the weight is the attenuation of the r = 0 geometry relative to the entry point,
+ * e^{−T(τ + η − 1)} (the view ray's and the light path's lengths; the table's r is left to the
+ * stored values). The estimate is an approximation, but an analytic function of T, g and S,
+ * which is all a divisor needs: the table stores E_g/D and the runtime multiplies D back.
+ * With the entry point's ψ0 (the thick divisor) the slab tables missed 1 % by far (1.7 % at
+ * g_hg = 0.95, where a slab ending before the light's foot point sees ψ fall ~60× along it, 20 %
+ * at g_hg = −0.9); the path mean with a hard cut at one attenuation length still missed it
+ * (2 %); this estimate follows both (docs/NEARLIGHT.md, measured). D = C·M with the constant
+ * C = ψ_max/ψ_min = ((1 + |g_hg|)/(1 − |g_hg|))³: E_g/E is a mean of ψ ≤ ψ_max and M ≥ ψ_min
+ * (positive weights), so E_g/D ≤ E and the stored ln(E_g/(D·B)) keeps the isotropic slab
+ * table's range (≤ T); a constant factor shifts ln by a constant and leaves the interpolation
+ * as it is. S = 0: C·ψ0. */
+SLUT_FN double slut_hg_nl_slab_divisor(double phase_g, double T, double g, double S) {
+    g = slut_clamp(g, -1.0, 1.0);
+    T = fmax(T, 0.0);
+    double sg = sqrt((1.0 - fabs(g)) * (1.0 + fabs(g)));
+    double s = (S > 0.0) ? S / T : 0.0; /* the path in units of l (+∞ at T = 0) */
+    double theta0 = atan2(sg, -g), theta1 = atan2(sg, -(s + g));
+    double mid = 0.5 * (theta0 + theta1), half_width = 0.5 * (theta1 - theta0), num = 0.0, den = 0.0;
+    for (int k = 0; k < 16; ++k) {
+        double theta = mid + half_width * ((k < 8) ? -slut_gl16_x[k] : slut_gl16_x[k - 8]);
+        double sin_t = sin(theta), cos_t = cos(theta);
+        double tau = -sg * cos_t / sin_t - g, eta = sg / sin_t;
+        double weight = slut_gl16_w[(k < 8) ? k : k - 8] * exp(-T * (tau + eta - 1.0));
+        num += weight * slut_hg_psi(phase_g, cos_t);
+        den += weight;
     }
-    return sum;
+    double ratio = (1.0 + fabs(phase_g)) / (1.0 - fabs(phase_g)); /* C = ratio³ = ψ_max/ψ_min */
+    double mean = (den > 0.0 && num > 0.0) ? num / den : slut_hg_psi(phase_g, cos(theta0));
+    return ratio * ratio * ratio * mean;
+}
+
+/* The divisor of either table: slut_hg_nl_table_divisor for a thick one (S = +∞), the slab
+ * divisor for finite S. */
+SLUT_FN double slut_hg_nl_divisor(double phase_g, double T, double g, double S) {
+    return (S > 1e300) ? slut_hg_nl_table_divisor(phase_g, T, g) : slut_hg_nl_slab_divisor(phase_g, T, g, S);
 }
 
 /* N_g = E_g·H (+∞ where H diverges: T = 0 with S > 0, or g = −1 with S ≥ T). */

@@ -12,6 +12,7 @@
 #include "scatterlut/airlight_hg.hpp"
 #include "scatterlut/anisotropic.hpp"
 #include "scatterlut/io.hpp"
+#include "scatterlut/nearlight_hg.hpp"
 
 namespace scatterlut {
 namespace {
@@ -85,12 +86,20 @@ void answer_airlight_phase(const nlohmann::json &q, double phase_g, nlohmann::js
     else out["table"] = nullptr;
 }
 
-// The anisotropic near light (phase_g ≠ 0) of one channel: exact by quadrature. The thin-medium
-// and distant-light forms of near_light queries are isotropic: not given for phase_g ≠ 0.
-void answer_near_light_phase(const nlohmann::json &q, double phase_g, nlohmann::json &out) {
+// The anisotropic near light (phase_g ≠ 0) of one channel: exact by quadrature; the table from
+// a loaded anisotropic near-light table (E3_hg or E4_hg) of the same g that covers the query
+// (the light below the plane: 0 when one of that g is loaded). The thin-medium and
+// distant-light forms of near_light queries are isotropic: not given for phase_g ≠ 0.
+void answer_near_light_phase(const nlohmann::json &q, double phase_g, nlohmann::json &out, const EvalTables &tables) {
     const NearLightQuery n = eval_near_light_query(q);
     eval_put(out, "exact", near_light_radiance_exact(n, phase_g)); // validates the query
-    out["table"] = nullptr; // no loaded table has this g
+    const NearLightParams p = near_light_params(n);
+    const NearLightHgTable *table = first_runtime<NearLightHgTable>(tables.samplers, [&](const NearLightHgTable &t) {
+        return t.phase_g() == phase_g && (p.light_below || t.covers(p.T, p.g, p.r, p.S));
+    });
+    if (!table) out["table"] = nullptr;
+    else if (p.light_below) out["table"] = 0.0;
+    else eval_put(out, "table", table->radiance(n));
 }
 
 // One channel's answer fields (those not in the query), with its note for non-finite values.
@@ -103,7 +112,7 @@ nlohmann::json channel_answer(const RuntimeKind &kind, const std::string &quanti
     nlohmann::json out = nlohmann::json::object();
     if (phase_g == 0.0) kind.answer_eval(quantity, q, out, tables);
     else if (quantity == "airlight") answer_airlight_phase(q, phase_g, out, tables);
-    else answer_near_light_phase(q, phase_g, out);
+    else answer_near_light_phase(q, phase_g, out, tables);
     note_non_finite(out);
     return out;
 }

@@ -16,10 +16,36 @@
 
 extern "C" {
 #include "slut_nearlight.h"
+#include "slut_nearlight_hg.h"
 }
 
 namespace scatterlut {
 namespace {
+
+// What the measurements read of a table, isotropic or anisotropic: the isotropic front-end
+// over the stored values, the factor they are scaled by (ψ_max; 1 for the isotropic kinds) and
+// the phase (0: the isotropic integral, bit for bit today's measurement).
+struct MeasuredTable {
+    const NearLightTable &stored;
+    const NearLightHgTable *anisotropic = nullptr; // null: the isotropic kinds
+    double phase_g = 0.0;
+    double node_E(const size_t *node) const { return anisotropic ? anisotropic->node_E(node) : stored.node_E(node); }
+    double E(double T, double g, double r, double S) const {
+        return anisotropic ? anisotropic->E(T, g, r, S) : stored.E(T, g, r, S);
+    }
+    // The quadrature E (E_g) at (T, g, r, S), refine 1 (2.5: the finer panel rule).
+    double exact(double T, double g, double r, double S, double refine = 1.0) const {
+        if (phase_g == 0.0) {
+            double E;
+            slut_nl_E_lanes(T, g, S, &r, 1, &E, refine);
+            return E;
+        }
+        return slut_hg_nl_E(T, g, r, (S > 1e300) ? HUGE_VAL : S / T, phase_g, refine);
+    }
+};
+
+MeasuredTable measured(const NearLightTable &t) { return {t, nullptr, 0.0}; }
+MeasuredTable measured(const NearLightHgTable &t) { return {t.scaled(), &t, t.phase_g()}; }
 
 } // namespace
 
@@ -38,14 +64,20 @@ NearLightPlan default_near_light_plan(bool finite_thickness) {
     return plan;
 }
 
+double near_light_hg_g_max(double phase_g, bool finite_thickness) {
+    return (phase_g < -0.5 || (finite_thickness && phase_g <= -0.5)) ? 0.85 : 1.0;
+}
+
 Table make_nearlight_table_layout(const NearLightPlan &plan) {
+    const bool hg = plan.phase_g != 0.0;
     Table t;
-    t.kind = plan.finite_thickness ? kKindNearLightE4 : kKindNearLightE3;
+    t.kind = plan.finite_thickness ? (hg ? kKindNearLightE4Hg : kKindNearLightE4)
+                                   : (hg ? kKindNearLightE3Hg : kKindNearLightE3);
     t.quantity_version = kNearLightEQuantityVersion;
     t.axes.push_back(make_axis("T", "optical distance sigma_t*l from the entry point to the light", plan.T_min,
                                plan.T_max, plan.T_scale, SLUT_WARP_LOGLIN, plan.n_T));
     t.axes.push_back(make_axis("g", "cosine between the eye direction and the direction to the light", plan.g_min,
-                               1.0, plan.g_scale, plan.g_warp, plan.n_g));
+                               plan.g_max, plan.g_scale, plan.g_warp, plan.n_g));
     t.axes.push_back(make_axis("r", "mu_l/mu_e, ratio of the light's and the eye's cosines to the normal", 0.0,
                                plan.r_max, plan.r_scale, SLUT_WARP_LOG1P, plan.n_r));
     if (plan.finite_thickness)
@@ -61,19 +93,40 @@ Table make_nearlight_table_layout(const NearLightPlan &plan) {
                       "base B = exp(-T) + (1-exp(-T))*E_thin(r, S*T/(S+T)) (slut_nl_E_base)"
                     : "ln of E = N/H, the inverse-square-weighted mean attenuation, in (0,1]";
     c.encoding = Encoding::Log;
+    if (hg) {
+        check_phase_g(plan.phase_g);
+        c.name = plan.finite_thickness ? "ln_E_over_D_B" : "ln_E_over_D";
+        c.meaning = std::string("ln(E_g/D") + (plan.finite_thickness ? "/B" : "") +
+                    "): E_g = N_g/H, the inverse-square-weighted mean of psi*attenuation, psi = 4*pi*p the "
+                    "Henyey-Greenstein phase of asymmetry phase.g, D = slut_hg_nl_divisor: " +
+                    (plan.finite_thickness
+                         ? std::string("((1+|phase.g|)/(1-|phase.g|))^3 times the attenuation-weighted mean of "
+                                       "psi along the path by 16-point Gauss-Legendre in theta")
+                         : std::string("psi at the entry point (cos theta = -g), for phase.g < 0 "
+                                       "psi_max*(psi0/psi_min)^(1-exp(-T))")) +
+                    (plan.finite_thickness ? ", B = slut_nl_E_base (the isotropic slab table's base)" : "");
+        t.extra[kExtraPhaseG] = phase_g_text(plan.phase_g);
+    }
     t.channels = {c};
     t.storage = plan.storage;
     return t;
 }
 
-std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout,
-                                             const std::function<void(double)> &progress, double tolerance) {
+namespace {
+
+// One near-light kernel over every node of `layout` (axis 0 fastest): the arguments (out, then
+// T, g, r node buffers with their counts, the S axis — a thick table passes one layer at
+// S = +inf —, the kernel's own `extra` arguments, the refine factor), launched as work-items
+// (dim0, g, T) in work-groups (local0, 1, 1), in a few slices of g when `progress` is given.
+std::vector<double> run_nearlight_kernel(Device &device, const Table &layout, const char *file, const char *name,
+                                         const std::function<void(cl::Kernel &, int &)> &extra, size_t dim0,
+                                         size_t local0, const std::function<void(double)> &progress,
+                                         double tolerance) {
     const bool finite_thickness = layout.axes.size() == 4;
-    const int n_T = layout.axes[0].map.count, n_g = layout.axes[1].map.count, n_r = layout.axes[2].map.count;
-    const size_t n = layout.node_count();
-    cl::Program &program = device.program("nearlight_E.cl");
-    cl::Kernel kernel(program, "nearlight_ln_E");
-    std::vector<double> values(n);
+    const int n_g = layout.axes[1].map.count, n_T = layout.axes[0].map.count;
+    cl::Program &program = device.program(file);
+    cl::Kernel kernel(program, name);
+    std::vector<double> values(layout.node_count());
     const cl::Buffer out = output_buffer(device, values);
     int arg = 0;
     kernel.setArg(arg++, out);
@@ -87,58 +140,95 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
         kernel.setArg(arg++, node_buffers.back());
         kernel.setArg(arg++, map.count);
     }
-    // A thick table has no S axis: the kernel reads one layer at S = +inf.
     const double inf = std::numeric_limits<double>::infinity();
     const slut_axis thick = {inf, inf, 0.0, SLUT_WARP_LINEAR, 1};
     set_axis_args(kernel, &arg, finite_thickness ? layout.axes[3].map : thick);
+    extra(kernel, arg);
     kernel.setArg(arg++, slut_nl_refine_for_tolerance(tolerance));
-    const size_t groups = static_cast<size_t>((n_r + SLUT_NL_MAX_LANES - 1) / SLUT_NL_MAX_LANES);
-    // The launch covers every node once: r groups × g × T work-items, each sweeping the S axis.
-    SLUT_CHECK_GE(groups * SLUT_NL_MAX_LANES, static_cast<size_t>(n_r));
-    SLUT_CHECK_EQ(n, static_cast<size_t>(n_T) * n_g * n_r * (finite_thickness ? layout.axes[3].map.count : 1));
-    SLUT_CHECK_LE(finite_thickness ? layout.axes[3].map.count : 1, SLUT_NL_MAX_SWEEP);
-    // One work-item per (r group, g, T) sweeps every S node (slut_nl_E_sweep). One work-item
-    // per work-group: PoCL keeps the private arrays of every work-item of a group on one
-    // thread's stack (E alone is SLUT_NL_MAX_SWEEP × SLUT_NL_MAX_LANES doubles, 8 KiB: its
-    // automatic groups of ~2000 overflowed it), and a work-item is a whole march, so the group
-    // overhead is negligible. With a progress callback the launch is cut into a few slices of
-    // g (one report each); without one it is a single launch: each slice ends in a wait for
-    // its slowest work-items with a core idle.
+    // With a progress callback the launch is cut into a few slices of g (one report each);
+    // without one it is a single launch: each slice ends in a wait for its slowest
+    // work-items with a core idle.
     const int slices = progress ? std::min(n_g, 8) : 1, per_slice = (n_g + slices - 1) / slices;
     for (int ig0 = 0; ig0 < n_g; ig0 += per_slice) {
         const int count = std::min(per_slice, n_g - ig0);
         device.queue().enqueueNDRangeKernel(kernel, cl::NDRange(0, static_cast<size_t>(ig0), 0),
-                                            cl::NDRange(groups, static_cast<size_t>(count), static_cast<size_t>(n_T)),
-                                            cl::NDRange(1, 1, 1));
+                                            cl::NDRange(dim0, static_cast<size_t>(count), static_cast<size_t>(n_T)),
+                                            cl::NDRange(local0, 1, 1));
         if (!progress) continue;
         device.queue().finish();
         progress(static_cast<double>(ig0 + count) / n_g);
     }
     wait_for_output(device, out, values);
-    device.kernels_ran("nearlight_E.cl");
+    device.kernels_ran(file);
     return values;
 }
 
-Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const Provenance &provenance,
-                               const std::function<void(double)> &progress) {
+} // namespace
+
+std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout,
+                                             const std::function<void(double)> &progress, double tolerance) {
+    const bool finite_thickness = layout.axes.size() == 4;
+    const int n_T = layout.axes[0].map.count, n_g = layout.axes[1].map.count, n_r = layout.axes[2].map.count;
+    const int n_S = finite_thickness ? layout.axes[3].map.count : 1;
+    if (layout.kind == kKindNearLightE3Hg || layout.kind == kKindNearLightE4Hg) {
+        // kernels/nearlight_Eg.cl: one work-item per (r, g, T) node marching each S node, in
+        // work-groups of one r row (its private arrays are SLUT_NLG_MAX_S doubles).
+        SLUT_CHECK_LE(n_S, 64); // SLUT_NLG_MAX_S of the kernel
+        const double phase_g = table_phase_g(layout);
+        return run_nearlight_kernel(
+            device, layout, "nearlight_Eg.cl", "nearlight_ln_Eg",
+            [phase_g](cl::Kernel &kernel, int &arg) { kernel.setArg(arg++, phase_g); }, static_cast<size_t>(n_r),
+            static_cast<size_t>(n_r), progress, tolerance);
+    }
+    const size_t n = layout.node_count();
+    const size_t groups = static_cast<size_t>((n_r + SLUT_NL_MAX_LANES - 1) / SLUT_NL_MAX_LANES);
+    // The launch covers every node once: r groups × g × T work-items, each sweeping the S axis.
+    SLUT_CHECK_GE(groups * SLUT_NL_MAX_LANES, static_cast<size_t>(n_r));
+    SLUT_CHECK_EQ(n, static_cast<size_t>(n_T) * n_g * n_r * n_S);
+    SLUT_CHECK_LE(n_S, SLUT_NL_MAX_SWEEP);
+    // One work-item per (r group, g, T) sweeps every S node (slut_nl_E_sweep). One work-item
+    // per work-group: PoCL keeps the private arrays of every work-item of a group on one
+    // thread's stack (E alone is SLUT_NL_MAX_SWEEP × SLUT_NL_MAX_LANES doubles, 8 KiB: its
+    // automatic groups of ~2000 overflowed it), and a work-item is a whole march, so the group
+    // overhead is negligible.
+    return run_nearlight_kernel(
+        device, layout, "nearlight_E.cl", "nearlight_ln_E", [](cl::Kernel &, int &) {}, groups, 1, progress, tolerance);
+}
+
+namespace {
+
+template <class Sampler>
+Table generate_table(Device &device, const NearLightPlan &plan, const Provenance &provenance,
+                     const std::function<void(double)> &progress) {
     Table t = make_nearlight_table_layout(plan);
     begin_generation(t, provenance, plan.integration_tolerance);
     t.values = integrate_nearlight_ln_E(device, t, progress, plan.integration_tolerance);
 
     t.accuracy.integration_max_rel =
-        measure_nearlight_integration(NearLightTable(t), nearlight_measurement_nodes(t, 400, 1),
+        measure_nearlight_integration(Sampler(t), nearlight_measurement_nodes(t, 400, 1),
                                       IntegrationReference::FinerPanelRule);
     t.accuracy.storage_max_rel = storage_rounding_max_rel(t, t.storage);
     for (double &v : t.values) v = round_to_storage(v, t.storage);
-    const SamplingStats s = measure_nearlight_sampling(NearLightTable(t), 20000, 2);
+    const SamplingStats s = measure_nearlight_sampling(Sampler(t), 20000, 2);
     t.accuracy.sampling_max_rel = s.max_rel;
     t.accuracy.sampling_p99_rel = s.p99_rel;
     t.accuracy.sampling_median_rel = s.median_rel;
     t.accuracy.sampling_points = s.points;
-    t.accuracy.sampling_domain = plan.finite_thickness
-                                     ? "E at uniform random unit coordinates of T, g, r and log-uniform S where E >= 1e-6"
-                                     : "E at uniform random unit coordinates where E >= 1e-6";
+    const char *what = plan.phase_g != 0.0 ? "E_g" : "E";
+    const char *where = plan.phase_g != 0.0 ? "the attenuation E >= 1e-6" : "E >= 1e-6";
+    t.accuracy.sampling_domain =
+        plan.finite_thickness
+            ? std::string(what) + " at uniform random unit coordinates of T, g, r and log-uniform S where " + where
+            : std::string(what) + " at uniform random unit coordinates where " + where;
     return t;
+}
+
+} // namespace
+
+Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const Provenance &provenance,
+                               const std::function<void(double)> &progress) {
+    if (plan.phase_g != 0.0) return generate_table<NearLightHgTable>(device, plan, provenance, progress);
+    return generate_table<NearLightTable>(device, plan, provenance, progress);
 }
 
 std::vector<NodeIndex> nearlight_measurement_nodes(const Table &table, int nodes, uint64_t seed) {
@@ -151,16 +241,17 @@ std::vector<NodeIndex> nearlight_measurement_nodes(const Table &table, int nodes
     return picks;
 }
 
-double measure_nearlight_integration(const NearLightTable &nl, const std::vector<NodeIndex> &nodes,
-                                     IntegrationReference reference) {
+namespace {
+
+double integration_error(const MeasuredTable &nl, const std::vector<NodeIndex> &nodes, IntegrationReference reference) {
     std::vector<double> err(nodes.size());
     parallel_for(static_cast<int>(nodes.size()), [&](int k) {
         const NodeIndex &p = nodes[static_cast<size_t>(k)];
         double at[4];
-        nl.node_params(p.data(), at); // T, g, r, S
-        double E_ref;
-        if (reference == IntegrationReference::FinerPanelRule) slut_nl_E_lanes(at[0], at[1], at[3], &at[2], 1, &E_ref, 2.5);
-        else E_ref = reference_near_light_E(at[0], at[1], at[2], at[3]);
+        nl.stored.node_params(p.data(), at); // T, g, r, S
+        const double E_ref = reference == IntegrationReference::FinerPanelRule
+                                 ? nl.exact(at[0], at[1], at[2], at[3], 2.5)
+                                 : reference_near_light_E(at[0], at[1], at[2], at[3], nl.phase_g);
         err[static_cast<size_t>(k)] = std::fabs(nl.node_E(p.data()) - E_ref) / E_ref;
     });
     double worst = 0;
@@ -168,15 +259,14 @@ double measure_nearlight_integration(const NearLightTable &nl, const std::vector
     return worst;
 }
 
-namespace {
-
-// Relative error of the table at each point where E ≥ 1e-6 (points (T, g, r, S)).
-SamplingStats sampling_stats(const NearLightTable &table, const std::vector<std::array<double, 4>> &at) {
+// Relative error of the table at each point where the attenuation E ≥ 1e-6 (points (T, g, r, S)).
+SamplingStats sampling_stats(const MeasuredTable &table, const std::vector<std::array<double, 4>> &at) {
     std::vector<double> err(at.size(), -1.0);
     parallel_for(static_cast<int>(at.size()), [&](int k) {
         const auto &p = at[static_cast<size_t>(k)];
-        const double exact = slut_nl_E(p[0], p[1], p[2], p[3]);
-        if (exact >= 1e-6) err[static_cast<size_t>(k)] = std::fabs(table.E(p[0], p[1], p[2], p[3]) - exact) / exact;
+        const double exact = table.exact(p[0], p[1], p[2], p[3]);
+        const double attenuation = table.phase_g == 0.0 ? exact : slut_nl_E(p[0], p[1], p[2], p[3]);
+        if (attenuation >= 1e-6) err[static_cast<size_t>(k)] = std::fabs(table.E(p[0], p[1], p[2], p[3]) - exact) / exact;
     });
     std::vector<double> kept;
     SamplingStats s;
@@ -196,10 +286,8 @@ SamplingStats sampling_stats(const NearLightTable &table, const std::vector<std:
     return s;
 }
 
-} // namespace
-
-SamplingStats measure_nearlight_sampling(const NearLightTable &table, int points, uint64_t seed) {
-    const Table &t = table.table();
+SamplingStats sampling(const MeasuredTable &table, int points, uint64_t seed) {
+    const Table &t = table.stored.table();
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     std::vector<std::array<double, 4>> at(static_cast<size_t>(points));
@@ -211,8 +299,8 @@ SamplingStats measure_nearlight_sampling(const NearLightTable &table, int points
     return sampling_stats(table, at);
 }
 
-SamplingStats measure_nearlight_corners(const NearLightTable &table, int points, uint64_t seed) {
-    const Table &t = table.table();
+SamplingStats corners(const MeasuredTable &table, int points, uint64_t seed) {
+    const Table &t = table.stored.table();
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     auto pick = [&](const std::vector<double> &edges, const slut_axis &axis) {
@@ -226,7 +314,7 @@ SamplingStats measure_nearlight_corners(const NearLightTable &table, int points,
         p[1] = pick({ag.min, ag.min + 1e-9, 1.0}, ag);
         p[2] = pick({0.0, 1e-12, ar.max}, ar);
         p[3] = std::numeric_limits<double>::infinity();
-        if (table.thick_only()) continue;
+        if (table.stored.thick_only()) continue;
         const slut_axis &aS = t.axes[3].map;
         std::vector<double> edges = {aS.min, aS.min * (1 + 1e-9), aS.max};
         const double peak = -p[1] * p[0]; // t* = −g·T, the foot of the perpendicular from the light
@@ -235,6 +323,29 @@ SamplingStats measure_nearlight_corners(const NearLightTable &table, int points,
         p[3] = pick(edges, aS);
     }
     return sampling_stats(table, at);
+}
+
+} // namespace
+
+double measure_nearlight_integration(const NearLightTable &table, const std::vector<NodeIndex> &nodes,
+                                     IntegrationReference reference) {
+    return integration_error(measured(table), nodes, reference);
+}
+double measure_nearlight_integration(const NearLightHgTable &table, const std::vector<NodeIndex> &nodes,
+                                     IntegrationReference reference) {
+    return integration_error(measured(table), nodes, reference);
+}
+SamplingStats measure_nearlight_sampling(const NearLightTable &table, int points, uint64_t seed) {
+    return sampling(measured(table), points, seed);
+}
+SamplingStats measure_nearlight_sampling(const NearLightHgTable &table, int points, uint64_t seed) {
+    return sampling(measured(table), points, seed);
+}
+SamplingStats measure_nearlight_corners(const NearLightTable &table, int points, uint64_t seed) {
+    return corners(measured(table), points, seed);
+}
+SamplingStats measure_nearlight_corners(const NearLightHgTable &table, int points, uint64_t seed) {
+    return corners(measured(table), points, seed);
 }
 
 } // namespace scatterlut

@@ -9,6 +9,7 @@
 #include "measurement.hpp"
 #include "opencl_device.hpp"
 #include "scatterlut/nearlight.hpp"
+#include "scatterlut/nearlight_hg.hpp"
 #include "scatterlut/table.hpp"
 
 namespace scatterlut {
@@ -25,6 +26,7 @@ struct NearLightPlan {
     double T_min = 1e-3, T_max = 20.0;  // σ_t·l; loglin axis ln T + T/T_scale: log spacing below
     double T_scale = 1.0;               // T_scale, linear above, where ln E(r = 0) ~ −T falls linearly
     double g_min = -0.99;               // ω·ω_l; below it (grazing view and light) E is integrated exactly
+    double g_max = 1.0;                 // below 1 only for strongly backward phases (anisotropic kinds)
     int g_warp = SLUT_WARP_SQRT1P;      // sqrt1p (√(1+g)), or log1p from g_min with g_scale
     double g_scale = 0.0;
     double r_max = 1e3, r_scale = 1e-6; // μ_l/μ_e, log1p axis including r = 0
@@ -32,12 +34,25 @@ struct NearLightPlan {
     double integration_tolerance = kNearLightIntegrationTolerance;
     int n_T = 96, n_g = 80, n_r = 64, n_S = 17; // node counts; the defaults: docs/NEARLIGHT.md
     Storage storage = Storage::F32;
+    // Henyey–Greenstein g of the medium's phase: 0 gives the isotropic kinds (near_light_E3/E4,
+    // unchanged); otherwise the anisotropic kinds near_light_E3_hg/E4_hg (scatterlut/nearlight_hg.hpp),
+    // which store ln(E_g/ψ_max) and record g as the extra "phase.g".
+    double phase_g = 0.0;
 };
 
 // The default plans: the 3-D table (S = ∞), and the 4-D one with r resolved down to 1e-9,
 // where thin slabs still see the light through their surface layer, and g in log1p spacing
 // from g_min (docs/NEARLIGHT.md).
 NearLightPlan default_near_light_plan(bool finite_thickness);
+
+// The largest near-light g an anisotropic table covers. A backward phase (phase_g < −0.5)
+// peaks at θ = π, which the view ray reaches for g → 1 (looking away from the light): there E_g
+// is the mean of ψ over the last α = acos g of scattering angle and varies with α/α itself,
+// which the √(1 + g) axis does not resolve; above g = 0.85 (α < 32°) such tables integrate
+// exactly (measured: g = −0.9, 96 × 80 × 64 nodes, 0.6 % max with it, 36 % without; docs/NEARLIGHT.md).
+// The slab tables stop there from phase_g ≤ −0.5 on (measured: g = −0.5, the hard corners
+// 1.2 % at T = T_max, g = 0.87 with g up to 1).
+double near_light_hg_g_max(double phase_g, bool finite_thickness);
 
 Table make_nearlight_table_layout(const NearLightPlan &plan);
 
@@ -68,5 +83,13 @@ SamplingStats measure_nearlight_sampling(const NearLightTable &table, int points
 // S_min·(1 + 1e-9), S_max, and S ≈ −g·T where the slab's far face cuts the 1/ĥ² peak) and
 // otherwise a random one as above.
 SamplingStats measure_nearlight_corners(const NearLightTable &table, int points, uint64_t seed);
+
+// The same measurements of an anisotropic table: E_g against slut_hg_nl_E (FinerPanelRule:
+// refine 2.5) or Boost.Math with the phase; sampling and corners where the attenuation (the
+// isotropic E) is ≥ 1e-6.
+double measure_nearlight_integration(const NearLightHgTable &table, const std::vector<NodeIndex> &nodes,
+                                     IntegrationReference reference);
+SamplingStats measure_nearlight_sampling(const NearLightHgTable &table, int points, uint64_t seed);
+SamplingStats measure_nearlight_corners(const NearLightHgTable &table, int points, uint64_t seed);
 
 } // namespace scatterlut

@@ -49,7 +49,7 @@ void add_per_phase_tables(const Scene &scene, const TableKind &kind, const Airli
     for (const SceneMedium &m : scene.media)
         if (m.sigma_s_per_m > 0 && !m.isotropic() && std::find(phases.begin(), phases.end(), m.phase_g) == phases.end())
             phases.push_back(m.phase_g);
-    size_t made = 0;
+    std::vector<double> made_for; // the g that got a table of this kind
     for (double g : phases) {
         PlannedTable t;
         t.kind = &kind;
@@ -62,21 +62,27 @@ void add_per_phase_tables(const Scene &scene, const TableKind &kind, const Airli
         if (t.requested_by.empty()) continue;
         kind.finish_plan(scene, state, overrides, t);
         plan.tables.push_back(std::move(t));
-        ++made;
+        made_for.push_back(g);
     }
-    if (made == 0) return;
+    if (made_for.empty()) return;
+    const size_t made = made_for.size();
     // One table per g, or one with a g axis over [g_min, g_max]: the g axis needs the spacing
     // at which interpolating in g holds the table's target (measured at every g of the scene;
     // the finest wins), each g node the size of one table.
     const PlannedTable &first = plan.tables.back();
     double spacing = 0.1;
-    for (double g : phases) spacing = std::min(spacing, g_axis_spacing(g, first.target_rel));
-    const double lo = *std::min_element(phases.begin(), phases.end()), hi = *std::max_element(phases.begin(), phases.end());
+    for (double g : made_for) spacing = std::min(spacing, g_axis_spacing(g, first.target_rel));
+    const double lo = *std::min_element(made_for.begin(), made_for.end());
+    const double hi = *std::max_element(made_for.begin(), made_for.end());
     const int g_nodes = std::max(2, static_cast<int>(std::ceil((hi - lo) / spacing)) + 1);
     plan.notes.push_back(std::string(kind.name()) + ": one table per phase_g (" + std::to_string(made) +
                          "), not one with a g axis: linear interpolation in g holds the target " +
                          fmt("%.3g", first.target_rel) + " only at a g spacing <= " + fmt("%.3g", spacing) +
-                         " (measured at the scene's g; the forward peak of width (1-g)/(1+g) moves with g), so a g "
+                         " (measured at the scene's g" +
+                         (std::string(kind.name()).rfind("near_light", 0) == 0
+                              ? " on the airlight integral, which the near-light table holds at r = 0"
+                              : "") +
+                         "; the forward peak of width (1-g)/(1+g) moves with g), so a g "
                          "axis over [" + fmt("%g", lo) + ", " + fmt("%g", hi) + "] would need " +
                          std::to_string(g_nodes) + " g nodes, each the size of one table, against " +
                          std::to_string(made) + " table(s)");

@@ -78,8 +78,8 @@ double reference_scaled_tail(double u_in, double w_in) {
     return static_cast<double>(integral / w);
 }
 
-double reference_near_light_E(double T_in, double g_in, double r_in, double S_in) {
-    const real T = T_in, g = g_in, r = r_in;
+double reference_near_light_E(double T_in, double g_in, double r_in, double S_in, double phase_g) {
+    const real T = T_in, g = g_in, r = r_in, G = phase_g;
     const real S = std::isinf(S_in) ? std::numeric_limits<real>::infinity() : real(S_in);
     const real sg2 = (1 - std::fabs(g)) * (1 + std::fabs(g)); // 1 − g² without cancellation
     const real c = T * r;                                      // the boundary layer t ~ T r of t/(t + T r)
@@ -87,7 +87,15 @@ double reference_near_light_E(double T_in, double g_in, double r_in, double S_in
     auto n = [=](real t) {
         const real hh = h2(t);
         const real share = r > 0 ? (std::isinf(c) ? real(0) : t / (t + c)) : real(1);
-        return std::exp(-t - std::sqrt(hh) * share) / hh;
+        const real att = std::exp(-t - std::sqrt(hh) * share) / hh;
+        if (G == 0) return att;
+        // ψ_G(θ) from sin²(θ/2) = (η + d)/(2η), cos²(θ/2) = (η − d)/(2η), d = t + T g, η = ĥ: the
+        // one that cancels as (T² (1 − g²))/(η ∓ d)/(2η).
+        const real d = t + T * g, eta = std::sqrt(hh), perp = T * T * sg2;
+        const real s2 = d >= 0 ? (eta + d) / (2 * eta) : perp / (eta - d) / (2 * eta);
+        const real c2 = d >= 0 ? perp / (eta + d) / (2 * eta) : (eta - d) / (2 * eta);
+        const real q = G >= 0 ? (1 - G) * (1 - G) + 4 * G * s2 : (1 + G) * (1 + G) - 4 * G * c2;
+        return att * (1 - G) * (1 + G) / (q * std::sqrt(q));
     };
     auto h = [=](real t) { return 1 / h2(t); };
     const real span = std::min(S, 4 * T + 200);

@@ -14,7 +14,9 @@ double reference_scaled_tail(double u, double w);
 // The near-light E = N/H of Gath 2008 §4.2 (docs/PHYSICS.md §1.2): with ĥ² = t² + T² + 2tTg,
 //   N = ∫_0^S exp(−t − ĥ(t)·t/(t + T r)) / ĥ² dt,   H = ∫_0^S ĥ^{−2} dt,
 // T > 0, g ∈ [−1, 1], r ≥ 0 (or +∞), S > 0 (or +∞). Relative accuracy ~1e-14.
-double reference_near_light_E(double T, double g, double r, double S);
+// phase_g ≠ 0: E_g, the Henyey–Greenstein phase ψ = 4π p_{phase_g}(θ) under N's integral, cos θ =
+// −(t + T g)/ĥ (docs/PHYSICS.md §1.4), computed here from its half angles in long double.
+double reference_near_light_E(double T, double g, double r, double S, double phase_g = 0.0);
 
 } // namespace scatterlut
 

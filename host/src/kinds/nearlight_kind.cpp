@@ -1,7 +1,9 @@
 // The near-light E tables (Gath 2008 §4.2): ln E(T, g, r) for thick media (kind E3, S = ∞)
-// and ln E/B(T, g, r, S) for slabs of finite optical thickness (kind E4): one class,
-// parameterized by slab / thick, registered twice. Their generator: generate_nearlight.cpp;
-// their runtime: tables/src/nearlight.cpp.
+// and ln E/B(T, g, r, S) for slabs of finite optical thickness (kind E4), and the same with a
+// Henyey–Greenstein phase (kinds E3_hg / E4_hg: ln(E_g/ψ_max), the medium's phase_g recorded
+// as "phase.g"): one class, parameterized by slab / thick and isotropic / anisotropic,
+// registered four times. Their generator: generate_nearlight.cpp; their runtime:
+// tables/src/nearlight.cpp and tables/src/nearlight_hg.cpp.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -15,6 +17,7 @@
 #include "scene_queries.hpp"
 #include "text_format.hpp"
 #include "scatterlut/nearlight.hpp"
+#include "scatterlut/nearlight_hg.hpp"
 
 extern "C" {
 #include "slut_nearlight.h"
@@ -25,6 +28,8 @@ namespace scatterlut {
 // kinds/nearlight_runtime.cpp
 const RuntimeKind &near_light_thick_runtime_kind();
 const RuntimeKind &near_light_slab_runtime_kind();
+const RuntimeKind &near_light_thick_hg_runtime_kind();
+const RuntimeKind &near_light_slab_hg_runtime_kind();
 
 namespace {
 
@@ -36,6 +41,7 @@ constexpr double kEFloor = 1e-6;
 struct Demand {
     Span T, S;
     double relative_error = HUGE_VAL;
+    double phase_g = 0.0; // anisotropic kinds: the g of the table (its media's)
 };
 
 const NearLightPlan &plan_of(const std::any &plan) { return std::any_cast<const NearLightPlan &>(plan); }
@@ -46,21 +52,29 @@ const std::vector<NearLightQuery> &queries_of(const RadianceQueries &q) {
 
 class NearLightKind final : public TableKind {
 public:
-    explicit NearLightKind(bool finite_thickness) : finite_(finite_thickness) {}
+    NearLightKind(bool finite_thickness, bool anisotropic) : finite_(finite_thickness), anisotropic_(anisotropic) {}
 
     const RuntimeKind &runtime() const override {
+        if (anisotropic_) return finite_ ? near_light_slab_hg_runtime_kind() : near_light_thick_hg_runtime_kind();
         return finite_ ? near_light_slab_runtime_kind() : near_light_thick_runtime_kind();
     }
 
     void add_demand(const Scene &scene, const SceneMedium &m, const SceneLight &l, std::any &state,
                     PlannedTable &t) const override {
         if (m.viewer_inside || !(finite_ ? m.has_thickness : m.thick)) return;
+        // Isotropic media: the isotropic kinds (today's tables); anisotropic ones: the _hg kind,
+        // which the planner asks with the media of one g at a time (per_phase()).
+        if (anisotropic_ != !m.isotropic()) return;
         if (!state.has_value()) state = Demand{};
         Demand &d = std::any_cast<Demand &>(state);
-        const double sigma_t = m.sigma_t_per_m(), d_lo = l.distance_m.min, d_hi = l.distance_m.max;
-        const std::string T_text = "T = sigma_t*l in [" + fmt("%.4g", sigma_t * d_lo) + ", " +
-                                   fmt("%.4g", sigma_t * d_hi) + "]";
-        d.T.add(sigma_t * d_lo, sigma_t * d_hi);
+        d.phase_g = m.phase_g;
+        // A coloured medium: the lower ends from its clearest channel, the upper from its densest
+        // (one table serves every channel; a grey medium has sigma_t_lo == sigma_t).
+        const double sigma_t = m.sigma_t_per_m(), sigma_t_lo = m.sigma_t_min_per_m();
+        const double d_lo = l.distance_m.min, d_hi = l.distance_m.max;
+        const std::string T_text = "T = sigma_t*l in [" + fmt("%.4g", sigma_t_lo * d_lo) + ", " +
+                                   fmt("%.4g", sigma_t * d_hi) + "]" + (m.coloured ? " (over its channels)" : "");
+        d.T.add(sigma_t_lo * d_lo, sigma_t * d_hi);
         d.relative_error = std::min(d.relative_error, m.relative_error);
         if (!finite_) {
             t.requested_by.push_back({m.name, l.name, "thick, seen from outside: " + T_text});
@@ -69,7 +83,7 @@ public:
         // The path inside along the view ray: the thickness, longer by 1/cos at the largest
         // view angle (a slab seen obliquely).
         const double view = scene.view.max_view_angle_deg * SLUT_PI / 180.0;
-        const double s_lo = sigma_t * m.thickness_m.min, s_hi = sigma_t * m.thickness_m.max / std::cos(view);
+        const double s_lo = sigma_t_lo * m.thickness_m.min, s_hi = sigma_t * m.thickness_m.max / std::cos(view);
         d.S.add(s_lo, s_hi);
         t.requested_by.push_back({m.name, l.name,
                                   "finite thickness, seen from outside: " + T_text + ", S = sigma_t*s in [" +
@@ -98,9 +112,23 @@ public:
         p.n_g = half_count(p.n_g);
         p.n_r = half_count(p.n_r);
         p.n_S = half_count(p.n_S);
+        p.phase_g = d.phase_g;
+        if (anisotropic_) {
+            t.phase_g = d.phase_g;
+            t.stem = near_light_hg_file_stem(finite_, d.phase_g);
+            p.g_max = near_light_hg_g_max(p.phase_g, finite_);
+            if (p.g_max < 1.0) {
+                if (p.g_min > p.g_max - 0.1) p.g_max = 1.0; // the scene's g lie above: keep them, measured
+                else
+                    t.domain_notes.push_back("g <= " + fmt("%.3g", p.g_max) + " (phase_g = " + fmt("%.6g", p.phase_g) +
+                                             ": its backward peak at g -> 1 is integrated exactly, measured)");
+            }
+        }
         t.target_rel = d.relative_error;
         t.plan = p;
     }
+
+    bool per_phase() const override { return anisotropic_; }
 
     const char *target_reason() const override { return "the radiance error: L = sigma_s p I0 sigma_t H E, H exact"; }
 
@@ -139,21 +167,29 @@ public:
     }
     double integration_error(const RuntimeSampler &sampler, const std::vector<NodeIndex> &nodes,
                              IntegrationReference reference) const override {
+        if (anisotropic_)
+            return measure_nearlight_integration(dynamic_cast<const SamplerOf<NearLightHgTable> &>(sampler).runtime,
+                                                 nodes, reference);
         return measure_nearlight_integration(dynamic_cast<const SamplerOf<NearLightTable> &>(sampler).runtime, nodes, reference);
     }
     SamplingStats sampling_error(const RuntimeSampler &sampler, int points, uint64_t seed) const override {
+        if (anisotropic_)
+            return measure_nearlight_sampling(dynamic_cast<const SamplerOf<NearLightHgTable> &>(sampler).runtime,
+                                              points, seed);
         return measure_nearlight_sampling(dynamic_cast<const SamplerOf<NearLightTable> &>(sampler).runtime, points, seed);
     }
 
-    RadianceQueries radiance_queries(const Scene &scene, const std::any &, size_t count,
+    RadianceQueries radiance_queries(const Scene &scene, const std::any &plan, size_t count,
                                      uint64_t seed) const override {
+        const double phase_g = plan_of(plan).phase_g;
         std::vector<NearLightQuery> all = sample_near_light_queries(scene, finite_, count, seed), kept;
         std::vector<double> exact(all.size()), E(all.size());
         parallel_for(static_cast<int>(all.size()), [&](int i) {
             const NearLightQuery &q = all[static_cast<size_t>(i)];
             const NearLightParams p = near_light_params(q);
-            E[static_cast<size_t>(i)] = p.light_below ? 0.0 : slut_nl_E(p.T, p.g, p.r, p.S);
-            exact[static_cast<size_t>(i)] = near_light_radiance_exact(q);
+            E[static_cast<size_t>(i)] = p.light_below ? 0.0 : slut_nl_E(p.T, p.g, p.r, p.S); // the attenuation
+            exact[static_cast<size_t>(i)] =
+                anisotropic_ ? near_light_radiance_exact(q, phase_g) : near_light_radiance_exact(q);
         });
         RadianceQueries s;
         for (size_t i = 0; i < all.size(); ++i)
@@ -168,6 +204,18 @@ public:
 
     std::vector<RuntimeMethod> runtime_methods(const Table &table, const RadianceQueries &qs) const override {
         const std::vector<NearLightQuery> *q = &queries_of(qs);
+        if (anisotropic_) {
+            const double g = NearLightHgTable(table).phase_g();
+            return {{"exact", "quadrature per call with the phase (near_light_radiance_exact(q, g))", true,
+                     [q, g](size_t k) { return near_light_radiance_exact((*q)[k], g); }},
+                    {"table", "one sample of the planned E_g table (NearLightHgTable::radiance)", false,
+                     table_radiance(table, qs)},
+                    {"thin", "thin-medium form times the path's mean phase (near_light_radiance_thin(q, g))", false,
+                     [q, g](size_t k) { return near_light_radiance_thin((*q)[k], g); }},
+                    {"distant", "distant-light limit, Gath 2008 eq. 5, times the phase at the entry point "
+                                "(near_light_radiance_distant(q, g))",
+                     false, [q, g](size_t k) { return near_light_radiance_distant((*q)[k], g); }}};
+        }
         return {{"exact", "quadrature per call (near_light_radiance_exact)", true,
                  [q](size_t k) { return near_light_radiance_exact((*q)[k]); }},
                 {"table", "one sample of the planned E table (NearLightTable::radiance)", false, table_radiance(table, qs)},
@@ -177,11 +225,28 @@ public:
                  [q](size_t k) { return near_light_radiance_distant((*q)[k]); }}};
     }
     std::function<double(size_t)> table_radiance(const Table &table, const RadianceQueries &qs) const override {
+        if (anisotropic_) {
+            auto near = std::make_shared<NearLightHgTable>(table);
+            const std::vector<NearLightQuery> *q = &queries_of(qs);
+            return [near, q](size_t k) { return near->radiance((*q)[k]); };
+        }
         auto near = std::make_shared<NearLightTable>(table);
         const std::vector<NearLightQuery> *q = &queries_of(qs);
         return [near, q](size_t k) { return near->radiance((*q)[k]); };
     }
     std::function<double()> lookup_loop(const Table &table, const std::vector<double> &p, size_t count) const override {
+        if (anisotropic_) {
+            auto near = std::make_shared<NearLightHgTable>(table);
+            const std::vector<double> *params = &p;
+            const size_t n = table.axes.size();
+            return [near, params, count, n] {
+                const std::vector<double> &pp = *params;
+                double sum = 0;
+                for (size_t i = 0; i < count; ++i)
+                    sum += near->E(pp[n * i], pp[n * i + 1], pp[n * i + 2], n == 4 ? pp[n * i + 3] : HUGE_VAL);
+                return sum;
+            };
+        }
         auto near = std::make_shared<NearLightTable>(table);
         const std::vector<double> *params = &p;
         const size_t n = table.axes.size();
@@ -194,22 +259,32 @@ public:
             return sum;
         };
     }
-    const char *runtime_class() const override { return "NearLightTable"; }
+    const char *runtime_class() const override { return anisotropic_ ? "NearLightHgTable" : "NearLightTable"; }
     std::string methods_note() const override { return ""; }
 
 private:
-    bool finite_;
+    bool finite_, anisotropic_;
 };
 
 } // namespace
 
 const TableKind &near_light_thick_table_kind() {
-    static const NearLightKind kind(false);
+    static const NearLightKind kind(false, false);
     return kind;
 }
 
 const TableKind &near_light_slab_table_kind() {
-    static const NearLightKind kind(true);
+    static const NearLightKind kind(true, false);
+    return kind;
+}
+
+const TableKind &near_light_thick_hg_table_kind() {
+    static const NearLightKind kind(false, true);
+    return kind;
+}
+
+const TableKind &near_light_slab_hg_table_kind() {
+    static const NearLightKind kind(true, true);
     return kind;
 }
 

@@ -1,6 +1,9 @@
 // The near-light E tables' runtime facet (kinds/runtime_kind.hpp): their sampler,
-// NearLightTable (tables/src/nearlight.cpp), and the eval quantities N and near_light (one
-// class for E3 and E4, registered twice). Their descriptor: kinds/nearlight_kind.cpp.
+// NearLightTable (tables/src/nearlight.cpp), and the eval quantities N and near_light; and the
+// anisotropic kinds' (E3_hg, E4_hg): their sampler NearLightHgTable (tables/src/nearlight_hg.cpp)
+// and no eval quantity of their own (eval.cpp's answer_near_light_phase reads them for
+// near_light queries with a phase_g). One class, registered four times. Their descriptor:
+// kinds/nearlight_kind.cpp.
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -10,6 +13,7 @@
 #include "eval.hpp"
 #include "kinds/runtime_kind.hpp"
 #include "scatterlut/nearlight.hpp"
+#include "scatterlut/nearlight_hg.hpp"
 
 extern "C" {
 #include "slut_nearlight.h"
@@ -30,14 +34,22 @@ bool any_near_light(const EvalTables &tables) {
 
 class NearLightRuntime final : public RuntimeKind {
 public:
-    explicit NearLightRuntime(bool finite_thickness) : finite_(finite_thickness) {}
-    const char *name() const override { return finite_ ? kKindNearLightE4 : kKindNearLightE3; }
+    NearLightRuntime(bool finite_thickness, bool anisotropic) : finite_(finite_thickness), anisotropic_(anisotropic) {}
+    const char *name() const override {
+        if (anisotropic_) return finite_ ? kKindNearLightE4Hg : kKindNearLightE3Hg;
+        return finite_ ? kKindNearLightE4 : kKindNearLightE3;
+    }
     std::shared_ptr<const RuntimeSampler> make_sampler(Table table) const override {
+        if (anisotropic_) return std::make_shared<SamplerOf<NearLightHgTable>>(std::move(table));
         return std::make_shared<SamplerOf<NearLightTable>>(std::move(table));
     }
-    std::vector<std::string> eval_quantities() const override { return {"N", "near_light"}; }
+    std::vector<std::string> eval_quantities() const override {
+        if (anisotropic_) return {};
+        return {"N", "near_light"};
+    }
     void answer_eval(const std::string &quantity, const nlohmann::json &q, nlohmann::json &out,
                      const EvalTables &tables) const override {
+        if (anisotropic_) return; // no quantity of its own (eval_quantities)
         if (quantity == "N") {
             const double T = eval_number_field(q, "T"), g = eval_number_field(q, "g"), r = eval_number_field(q, "r"),
                          S = eval_number_field(q, "S");
@@ -67,18 +79,28 @@ public:
     }
 
 private:
-    bool finite_;
+    bool finite_, anisotropic_;
 };
 
 } // namespace
 
 const RuntimeKind &near_light_thick_runtime_kind() {
-    static const NearLightRuntime kind(false);
+    static const NearLightRuntime kind(false, false);
     return kind;
 }
 
 const RuntimeKind &near_light_slab_runtime_kind() {
-    static const NearLightRuntime kind(true);
+    static const NearLightRuntime kind(true, false);
+    return kind;
+}
+
+const RuntimeKind &near_light_thick_hg_runtime_kind() {
+    static const NearLightRuntime kind(false, true);
+    return kind;
+}
+
+const RuntimeKind &near_light_slab_hg_runtime_kind() {
+    static const NearLightRuntime kind(true, true);
     return kind;
 }
 

@@ -10,10 +10,13 @@ const RuntimeKind &near_light_thick_runtime_kind();
 const RuntimeKind &near_light_slab_runtime_kind();
 const RuntimeKind &airlight_hg_runtime_kind();
 const RuntimeKind &surface_runtime_kind();
+const RuntimeKind &near_light_thick_hg_runtime_kind();
+const RuntimeKind &near_light_slab_hg_runtime_kind();
 
 const std::vector<const RuntimeKind *> &runtime_kinds() {
     static const std::vector<const RuntimeKind *> kinds = {&airlight_runtime_kind(), &near_light_thick_runtime_kind(),
                                                            &near_light_slab_runtime_kind(), &airlight_hg_runtime_kind(),
+                                                           &near_light_thick_hg_runtime_kind(), &near_light_slab_hg_runtime_kind(),
                                                            &surface_runtime_kind()};
     return kinds;
 }
