@@ -19,6 +19,9 @@ SLUT_FN double slut_nl_sin_from_cos(double g) {
     return (a >= 1.0) ? 0.0 : sqrt((1.0 - a) * (1.0 + a));
 }
 
+/* atan(x)/x for x ≥ 0 (1 at x = 0; atan returns tiny x exactly, so no series is needed). */
+SLUT_FN double slut_nl_atanc(double x) { return (x == 0.0) ? 1.0 : atan(x) / x; }
+
 /* ∫ ĥ^{−2} dt over a segment of the ray of length len (≥ 0, may be +∞) that starts at a point
  * with ĥ² = hh2 and offset d = t + T g, w = T√(1 − g²) (all lengths in any one unit).
  *
@@ -31,37 +34,19 @@ SLUT_FN double slut_nl_sin_from_cos(double g) {
  * Above π/2 the angle is ≥ π/2 and (π − atan(len·w/|den|))/w has no cancellation; it is
  * +∞ at w = 0 (the segment runs through the light: g = −1, S ≥ T).
  * Citation: elementary; the angle substitution of Sun et al. 2005 (the airlight F, §1.1). */
-/* It is written in two steps, so that a caller evaluating several at once can take their atans
- * together (the runtime's 4-query batch: one vector atan for four, tables/src/nearlight.cpp):
- * slut_nl_inv_square_atan_arg, the argument x of the one atan the integral needs
- * (len·w/|den|, w/|d| for len = ∞; 0 where it needs none), then slut_nl_inv_square_from_atan,
- * the integral from x and atan(x). slut_nl_inv_square_integral is the two with the scalar
- * atan: every branch the same operations as a single function would do. */
-SLUT_FN double slut_nl_inv_square_atan_arg(double len, double hh2, double d, double w) {
+SLUT_FN double slut_nl_inv_square_integral(double len, double hh2, double d, double w) {
     if (!(len > 0.0)) return 0.0;
-    if (len > SLUT_INFINITE_ABOVE) return (d == 0.0) ? 0.0 : w / ((d > 0.0) ? d : -d);
-    double den = hh2 + len * d;
-    return (den == 0.0) ? 0.0 : len * w / ((den > 0.0) ? den : -den);
-}
-SLUT_FN double slut_nl_inv_square_from_atan(double len, double hh2, double d, double w, double x, double atan_x) {
-    if (!(len > 0.0)) return 0.0;
-    /* atanc = atan(x)/x for x ≥ 0 (1 at x = 0; atan returns tiny x exactly: no series needed) */
-    double atanc = (x == 0.0) ? 1.0 : atan_x / x;
     if (len > SLUT_INFINITE_ABOVE) {
-        if (d > 0.0) return atanc / d;
+        if (d > 0.0) return slut_nl_atanc(w / d) / d;
         if (!(w > 0.0)) return SLUT_HUGE_VAL;
         if (d == 0.0) return 0.5 * SLUT_PI / w;
-        return (SLUT_PI - atan_x) / w;
+        return (SLUT_PI - atan(w / (-d))) / w;
     }
     double den = hh2 + len * d;
-    if (den > 0.0) return atanc * (len / den);
+    if (den > 0.0) return slut_nl_atanc(len * w / den) * (len / den);
     if (!(w > 0.0)) return SLUT_HUGE_VAL;
     if (den == 0.0) return 0.5 * SLUT_PI / w;
-    return (SLUT_PI - atan_x) / w;
-}
-SLUT_FN double slut_nl_inv_square_integral(double len, double hh2, double d, double w) {
-    double x = slut_nl_inv_square_atan_arg(len, hh2, d, w);
-    return slut_nl_inv_square_from_atan(len, hh2, d, w, x, atan(x));
+    return (SLUT_PI - atan(len * w / (-den))) / w;
 }
 
 

@@ -188,12 +188,10 @@ double NearLightTable::radiance(const NearLightQuery &q) const {
 // warps (one vector log per log-type axis), H (one vector atan), for the 4-D table the slab
 // coordinate (slut_nl_unit_from_S: six vector atans and two vector logs) and the value base
 // (slut_nl_E_base: a vector exp and two vector expm1), the decoding exp; the cells of the four
-// queries are gathered together. The vector forms call the kernels' own code around the
-// vector calls: slut_nl_inv_square_integral's two steps (slut_nl_inv_square_atan_arg, one
-// vector atan, slut_nl_inv_square_from_atan) and slut_nl_E_base's lane-generic expressions
-// (SLUT_NL_THIN_*, SLUT_NL_BASE_OF_THIN); only the axis warps (unit4, and e4_radiance with
-// its logs given) still restate slut_unit_from_warped_runtime, whose scalar form takes its
-// log inside. The tests compare every query with the scalar call. Queries the vectors do not serve (zero
+// queries are gathered together. The value base takes the kernel's lane-generic expressions
+// (SLUT_NL_THIN_*, SLUT_NL_BASE_OF_THIN); slut_nl_inv_square_integral (why: at
+// inv_square_integral4) and the warps of slut_unit_from_warped_runtime (its scalar form takes
+// its log inside) are restated lane-wise; the tests compare every query with the scalar call. Queries the vectors do not serve (zero
 // radiance, the light at the entry point, T = 0, outside the table, an axis warp without a
 // vector form) take the scalar radiance(q).
 struct NearLightBatch {
@@ -204,14 +202,31 @@ struct NearLightBatch {
     const NearLightQuery *queries;
     double *out;
 
-    // slut_nl_inv_square_integral(len, hh2, d, w) lane-wise: the kernel's own two steps
-    // (kernels/slut_nearlight_closed.h) with the four atans as one vector atan between them.
+    // slut_nl_inv_square_integral(len, hh2, d, w) lane-wise. One atan serves both of its
+    // branches: x = num/|den| with num = len·w (w for len = ∞) and den = hh2 + len·d (d for
+    // len = ∞); den > 0: atanc(x)·len/den (1/den for len = ∞); den ≤ 0: (π − atan x)/w, +∞ at
+    // w = 0 (den = 0 gives x = ∞, atan x = π/2: π/(2w), as the scalar form's own branch).
+    // Why a restatement and not the kernel's code: the kernel form branches (five cases, each
+    // with its own order of operations, which the default tables depend on to the bit through
+    // the sweep's H), so lane by lane it costs a branchy scalar pass per lane around the vector
+    // atan. Measured with the kernel form split in two steps around one vector atan (argument,
+    // then the integral from atan x) instead of these selects: BM_NearLightRadiance/4 took
+    // 237-249 ns of CPU per query against 154-156 ns (medians of 3 repetitions, two
+    // interleaved rounds, `build/scatterlut_bench --benchmark_filter=BM_NearLightRadiance
+    // --benchmark_repetitions=3`; /3, which does not come here, 97-105 ns in both). The tests
+    // compare every vector query with the scalar path.
     SLUT_SIMD4_TARGET static v4d inv_square_integral4(v4d len, v4d hh2, v4d d, v4d w) {
-        v4d x, out;
-        for (int l = 0; l < 4; ++l) x[l] = slut_nl_inv_square_atan_arg(len[l], hh2[l], d[l], w[l]);
+        const v4d zero = simd4::splat(0.0), one = simd4::splat(1.0);
+        const v4l infinite = len > SLUT_INFINITE_ABOVE;
+        const v4d len_eff = simd4::select(infinite, one, len);
+        const v4d num = len_eff * w;
+        const v4d den = simd4::select(infinite, d, hh2 + len * d);
+        const v4l ahead = den > zero;
+        const v4d x = num / simd4::select(ahead, den, -den);
         const v4d a = simd4::atan4(x);
-        for (int l = 0; l < 4; ++l) out[l] = slut_nl_inv_square_from_atan(len[l], hh2[l], d[l], w[l], x[l], a[l]);
-        return out;
+        const v4d forward = simd4::select(x == zero, one, a / x) * (len_eff / den);
+        const v4d backward = simd4::select(w > zero, (SLUT_PI - a) / w, simd4::splat(HUGE_VAL));
+        return simd4::select(len > zero, simd4::select(ahead, forward, backward), zero);
     }
 
     // slut_unit_from_warped_runtime lane-wise for the warps with a vector form; false for the others.
