@@ -4,12 +4,12 @@
 # (prelude.glsl / prelude.essl / prelude.hlsl: texture access, infinity, constant arrays,
 # ES precision), and the shared part: the float math of common.slsl, then the kernels/
 # headers the generator and the C++ runtime compile, compiled a third time as
-# GLSL/HLSL in float through kernels/slut_compat.h's SLUT_SHADER branch — whole headers, or
-# the SLUT_SHADER_BEGIN/END regions of those not yet written in the shared subset. Their
-# block comments are dropped (the derivations stay in the headers; the snippets stay ASCII).
+# GLSL/HLSL in float through kernels/slut_compat.h's SLUT_SHADER branch — whole headers,
+# less their `#ifndef SLUT_SHADER` blocks. Their block comments are dropped (the derivations
+# stay in the headers; the snippets stay ASCII).
 # Usage: cmake -DLANG=glsl|hlsl|essl -DNAME=airlight -DSRC_DIR=tables/shaders/src
 #              -DKERNELS_DIR=kernels
-#              -DHEADERS="slut_compat.h|slut_axes.h:regions|slut_airlight.h|slut_nearlight.h:regions"
+#              -DHEADERS="slut_compat.h|slut_axes.h|slut_airlight.h|slut_nearlight_closed.h|..."
 #              -DOUT=file -P assemble_shaders.cmake
 cmake_policy(VERSION 3.20)
 foreach(var LANG NAME SRC_DIR KERNELS_DIR HEADERS OUT)
@@ -78,62 +78,39 @@ function(slut_take_block text open close header)
   set(block_after "${rest}" PARENT_SCOPE)
 endfunction()
 
-# The shared C code, header by header in order: a header named alone is taken whole (its
-# `#include "..."` lines dropped: the list names every header; its `#ifndef SLUT_SHADER` ...
-# `#endif /* !SLUT_SHADER */` blocks dropped: double-only code the GPU preprocessor would skip
-# anyway); "header:regions" takes only its SLUT_SHADER_BEGIN/END regions.
+# The shared C code, header by header in order, each taken whole (its `#include "..."` lines
+# dropped: the list names every header; its `#ifndef SLUT_SHADER` ... `#endif /* !SLUT_SHADER */`
+# blocks dropped: C-only code the GPU preprocessor would skip anyway). A header must not keep
+# the cut-out markers of the older layout (SLUT_SHADER_BEGIN/END).
 set(shared "")
 set(scanned "") # the shared code whose calls are checked below (all but slut_compat.h)
 string(REPLACE "|" ";" HEADERS "${HEADERS}")
 set(header_names "")
-foreach(entry IN LISTS HEADERS)
-  string(REPLACE ":" ";" entry "${entry}")
-  list(GET entry 0 header)
-  list(LENGTH entry parts)
-  set(mode whole)
-  if(parts GREATER 1)
-    list(GET entry 1 mode)
+foreach(header IN LISTS HEADERS)
+  if(header MATCHES ":")
+    message(FATAL_ERROR "assemble_shaders.cmake: '${header}': headers are taken whole (no ':mode')")
   endif()
   list(APPEND header_names "kernels/${header}")
   file(READ "${KERNELS_DIR}/${header}" text)
-  if(mode STREQUAL "whole")
-    while(TRUE) # (CMake regexes are greedy: one block at a time)
-      slut_take_block("${text}" "\n#ifndef SLUT_SHADER" "#endif /* !SLUT_SHADER */" "${header}")
-      if(NOT block_found)
-        break()
-      endif()
-      set(text "${block_before}\n${block_after}")
-    endwhile()
-    slut_strip_block_comments("${text}" text)
-    string(REGEX REPLACE "#include \"[^\"\n]*\"[^\n]*\n" "" text "${text}")
-    string(REGEX REPLACE "\n\n\n+" "\n\n" text "${text}")
-    string(STRIP "${text}" text)
-    string(APPEND shared "// ---- kernels/${header} (read the derivations there)\n${text}\n\n")
-    if(NOT header STREQUAL "slut_compat.h")
-      string(APPEND scanned "${text}\n")
+  string(FIND "${text}" "SLUT_SHADER_BEGIN" marker)
+  if(NOT marker EQUAL -1)
+    message(FATAL_ERROR "assemble_shaders.cmake: ${header} has a SLUT_SHADER_BEGIN region: write the header in "
+                        "the shared subset (kernels/slut_compat.h) and put C-only code in `#ifndef SLUT_SHADER` blocks")
+  endif()
+  while(TRUE) # (CMake regexes are greedy: one block at a time)
+    slut_take_block("${text}" "\n#ifndef SLUT_SHADER" "#endif /* !SLUT_SHADER */" "${header}")
+    if(NOT block_found)
+      break()
     endif()
-  elseif(mode STREQUAL "regions")
-    set(found 0)
-    while(TRUE)
-      slut_take_block("${text}" "/* SLUT_SHADER_BEGIN" "/* SLUT_SHADER_END */" "${header}")
-      if(NOT block_found)
-        break()
-      endif()
-      set(text "${block_after}")
-      string(FIND "${block_inside}" "*/" opening_end) # the region starts after its opening comment
-      math(EXPR opening_end "${opening_end} + 2")
-      string(SUBSTRING "${block_inside}" ${opening_end} -1 region)
-      slut_strip_block_comments("${region}" region)
-      string(STRIP "${region}" region)
-      string(APPEND shared "// ---- from kernels/${header} (read the derivations there)\n${region}\n\n")
-      string(APPEND scanned "${region}\n")
-      math(EXPR found "${found} + 1")
-    endwhile()
-    if(found EQUAL 0)
-      message(FATAL_ERROR "assemble_shaders.cmake: ${header} has no SLUT_SHADER_BEGIN region")
-    endif()
-  else()
-    message(FATAL_ERROR "assemble_shaders.cmake: '${header}:${mode}': the mode must be 'regions' or none")
+    set(text "${block_before}\n${block_after}")
+  endwhile()
+  slut_strip_block_comments("${text}" text)
+  string(REGEX REPLACE "#include \"[^\"\n]*\"[^\n]*\n" "" text "${text}")
+  string(REGEX REPLACE "\n\n\n+" "\n\n" text "${text}")
+  string(STRIP "${text}" text)
+  string(APPEND shared "// ---- kernels/${header} (read the derivations there)\n${text}\n\n")
+  if(NOT header STREQUAL "slut_compat.h")
+    string(APPEND scanned "${text}\n")
   endif()
 endforeach()
 string(STRIP "${shared}" shared)

@@ -33,10 +33,11 @@
  *             The one-parameter maps below treat it as LOG in S, which it equals at g = 1.
  *
  * Compiled three times: as OpenCL C (generator), as C++ (runtime sampler, validator) and,
- * the part between SLUT_SHADER_BEGIN and SLUT_SHADER_END, as GLSL and HLSL in float
- * (cmake/assemble_shaders.cmake copies it into the snippets; docs/SHADERS.md). That part
- * keeps to the subset all four share: no pointers, no structs, casts through SLUT_INT /
- * SLUT_DOUBLE, math functions the shader preludes provide (slut_compat.h lists them).
+ * whole, as GLSL and HLSL in float (cmake/assemble_shaders.cmake; docs/SHADERS.md), in the
+ * subset the five languages share (kernels/slut_compat.h): slut_axis passed by value, casts
+ * through SLUT_INT / SLUT_DOUBLE, precision-dependent caps as compat macros. The functions
+ * that take an axis by pointer or write through pointers (C callers only) and the runtime's
+ * fast path sit in the `#ifndef SLUT_SHADER` block below.
  */
 #ifndef SLUT_AXES_H
 #define SLUT_AXES_H
@@ -44,7 +45,6 @@
 #include "slut_compat.h"
 #include "slut_fastmath.h"
 
-/* SLUT_SHADER_BEGIN (the axis maps: also the GLSL/HLSL snippets') */
 #define SLUT_WARP_LINEAR 0
 #define SLUT_WARP_LOG 1
 #define SLUT_WARP_LOG1P 2
@@ -108,16 +108,17 @@ SLUT_FN double slut_asinh_cot_peak_inverse(double y, double s) {
  * so its tangent lies above it: one Newton step from any p0 > 0 lands at or below the root,
  * and from below the steps increase monotonically to it (quadratically near it). The start,
  * p0 = e^y for y ≤ ln s + 1 and s·(y − ln s) otherwise, follows the two asymptotes (log and
- * linear). Stops at a relative step ≤ 4e-16; round trip tested in tests/kernels/test_axes.cpp. */
+ * linear). Stops at a relative step ≤ SLUT_LOGLIN_CONVERGED (4e-16; float 2.4e-7, two ulp) or
+ * after SLUT_LOGLIN_MAX_STEPS; round trip tested in tests/kernels/test_axes.cpp. */
 SLUT_FN double slut_loglin_inverse(double y, double s) {
     double p = (y <= log(s) + 1.0) ? exp(y) : s * (y - log(s));
-    for (int k = 0; k < 60; ++k) {
+    for (int k = 0; k < SLUT_LOGLIN_MAX_STEPS; ++k) {
         double f = log(p) + p / s - y;
         double next = p - f / (1.0 / p + 1.0 / s);
         if (!(next > 0.0)) next = 0.5 * p; /* cannot happen from below the root; never leave p > 0 */
         double step = fabs(next - p);
         p = next;
-        if (step <= 4e-16 * p) break;
+        if (step <= SLUT_LOGLIN_CONVERGED * p) break;
     }
     return p;
 }
@@ -139,13 +140,18 @@ SLUT_FN double slut_warp_inverse(int warp, double y, double p_min, double scale)
     }
 }
 
+/* p clamped to an axis [p_min, p_max], NaN to p_min (clamp-to-edge, as the samplers). */
+SLUT_FN double slut_clamp_to_axis_range(double p, double p_min, double p_max) {
+    return (p > p_min) ? ((p < p_max) ? p : p_max) : p_min;
+}
+
 /* Parameter → unit coordinate x ∈ [0, 1], for an axis [p_min, p_max] with this warp, whose
    warped ends g0 = g(p_min), g1 = g(p_max) a sampler may compute once. The parameter is clamped to the axis first (clamp-to-edge): a warp need not be defined
    beyond the ends (LOG1P below p_min − scale, LOG at p ≤ 0), and NaN goes to p_min, so
    that no parameter can give a node index outside the table. */
 SLUT_FN double slut_unit_from_warped_ends(int warp, double p, double p_min, double p_max, double scale, double g0,
                                           double g1) {
-    double q = (p > p_min) ? ((p < p_max) ? p : p_max) : p_min;
+    double q = slut_clamp_to_axis_range(p, p_min, p_max);
     return (slut_warp_forward(warp, q, p_min, scale) - g0) / (g1 - g0);
 }
 SLUT_FN double slut_unit_from_warp(int warp, double p, double p_min, double p_max, double scale) {
@@ -171,16 +177,21 @@ SLUT_FN int slut_cell_index(double t, int count) {
     return (i > count - 2) ? count - 2 : i;
 }
 SLUT_FN double slut_cell_fraction(double t, int i0) { return t - SLUT_DOUBLE(i0); }
-/* SLUT_SHADER_END */
 
-/* One axis as the maps need it (plain data, identical in C++ and OpenCL C). */
-typedef struct slut_axis {
+/* One axis as the maps need it (plain data, the same in every language; by value in shared
+ * code that the snippets compile). */
+SLUT_STRUCT_BEGIN(slut_axis)
     double min;   /* parameter at node 0 */
     double max;   /* parameter at node count − 1 */
     double scale; /* warp parameter (LOG1P: s); unused by the others */
     int warp;     /* SLUT_WARP_* */
     int count;    /* nodes, ≥ 2 */
-} slut_axis;
+SLUT_STRUCT_END(slut_axis);
+
+/* Whether p lies on the axis, [min, max] (NaN: no). 1 or 0. */
+SLUT_FN int slut_on_axis(slut_axis a, double p) { return (p >= a.min && p <= a.max) ? 1 : 0; }
+
+#ifndef SLUT_SHADER /* the pointer forms and the runtime's fast path: C callers only */
 
 /* The warped ends g(min), g(max) of an axis. They are constant per axis: a sampler that
    looks up many points computes them once and calls slut_unit_from_warped. */
@@ -239,5 +250,6 @@ SLUT_FN void slut_cell_from_unit(double x, int count, int *i0, double *f) {
     *i0 = slut_cell_index(t, count);
     *f = slut_cell_fraction(t, *i0);
 }
+#endif /* !SLUT_SHADER */
 
 #endif /* SLUT_AXES_H */

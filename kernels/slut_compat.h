@@ -16,9 +16,10 @@
  * references), no templates, no standard library beyond <math.h> functions,
  * double precision throughout.
  *
- * A third compiler: kernels/slut_airlight.h, slut_phase.h and slut_airlight_hg.h (whole) and the regions between
- * SLUT_SHADER_BEGIN and SLUT_SHADER_END of slut_axes.h and slut_nearlight.h are compiled
- * once more, as GLSL, GLSL ES 3.00 and HLSL in float, for the GPU sampling snippets
+ * A third compiler: the headers the GPU snippets list (SLUT_SHADER_HEADERS in the top-level
+ * CMakeLists.txt: slut_axes.h, slut_airlight.h, the near-light parts but the sweep,
+ * slut_phase.h and slut_airlight_hg.h) are
+ * compiled once more, whole, as GLSL, GLSL ES 3.00 and HLSL in float, for the GPU sampling snippets
  * (cmake/assemble_shaders.cmake; the SLUT_SHADER branch below, the float math of
  * tables/shaders/src/common.slsl and the per-language preludes). Code the snippets
  * compile keeps to the subset the five languages share:
@@ -87,6 +88,8 @@
 #  define SLUT_EXPINT_LEADING_ABOVE 1e6
 #  define SLUT_THETA_MAX_PANELS 400
 #  define SLUT_IN_PLANE_TOLERANCE 1e-6
+#  define SLUT_LOGLIN_MAX_STEPS 60
+#  define SLUT_LOGLIN_CONVERGED 2.4e-7
 /* SLUT_PIO2_HI and SLUT_PIO2_LO, π/2 split for float, come from common.slsl (its float
  * math needs them before this header). */
 #endif
@@ -182,6 +185,8 @@ SLUT_FN void slut_check_failed(const char *file, int line, const char *condition
 #define SLUT_EXPINT_LEADING_ABOVE 1e300   /* e^a E_n(a) = 1/(a + n) above this (relative error n/a²) */
 #define SLUT_THETA_MAX_PANELS 20000       /* θ-integral panels */
 #define SLUT_IN_PLANE_TOLERANCE 1e-15     /* a unit-vector cosine this far below 0 is 0 (rounding) */
+#define SLUT_LOGLIN_MAX_STEPS 60          /* slut_loglin_inverse: Newton steps at most */
+#define SLUT_LOGLIN_CONVERGED 4e-16       /* slut_loglin_inverse: a relative step this small is the root */
 
 /* π/2 split so that π/2 − v is exact for v near π/2 (Sterbenz, plus the tail). */
 #define SLUT_PIO2_HI 1.57079632679489655800e+00 /* double nearest π/2 */

@@ -35,25 +35,20 @@ slut_nl_params params(const NearLightQuery &q) {
     return params_unchecked(q);
 }
 
+slut_vec3 vec3(const double *v) { return slut_vec3_make(v[0], v[1], v[2]); }
+
+// (T, g, r, S) of the query: slut_nl_params_seen (the eye ray refracted where eta ≠ 1), the
+// front-end the near-light snippet calls too.
 slut_nl_params params_unchecked(const NearLightQuery &q) {
-    double eye_inside[3] = {q.eye_dir[0], q.eye_dir[1], q.eye_dir[2]};
-    const double mu_e = q.eye_dir[0] * q.normal[0] + q.eye_dir[1] * q.normal[1] + q.eye_dir[2] * q.normal[2];
-    require(mu_e > 0.0, "the viewer is below the surface (eye_dir . normal <= 0)");
-    if (q.eta != 1.0) slut_refract_eye_dir(q.normal, q.eye_dir, q.eta, eye_inside);
-    slut_nl_params p;
-    slut_nl_params_from_geometry(q.normal, eye_inside, q.light_rel_m, q.sigma_s_per_m + q.sigma_a_per_m,
-                                 q.length_m, &p);
-    if (p.kind == SLUT_NL_VIEWER_BELOW) p.kind = SLUT_NL_LIGHT_BELOW; // refracted to grazing: no light out
-    return p;
+    const slut_vec3 normal = vec3(q.normal), eye = vec3(q.eye_dir);
+    require(slut_vec3_dot(eye, normal) > 0.0, "the viewer is below the surface (eye_dir . normal <= 0)");
+    return slut_nl_params_seen(normal, eye, vec3(q.light_rel_m), q.sigma_s_per_m + q.sigma_a_per_m, q.length_m,
+                               q.eta);
 }
 
 // The Fresnel factor of the exit, 1 without refraction or without `fresnel`.
 double exit_transmittance(const NearLightQuery &q) {
-    if (!q.fresnel || q.eta == 1.0) return 1.0;
-    double inside[3];
-    const double cos_i = q.eye_dir[0] * q.normal[0] + q.eye_dir[1] * q.normal[1] + q.eye_dir[2] * q.normal[2];
-    const double cos_t = slut_refract_eye_dir(q.normal, q.eye_dir, q.eta, inside);
-    return slut_fresnel_transmittance(cos_i, cos_t, q.eta);
+    return slut_exit_transmittance(vec3(q.normal), vec3(q.eye_dir), q.eta, q.fresnel ? 1 : 0);
 }
 
 // σ_s/(4π)·I0·E·(T·H)/l with the exit's Fresnel factor (slut_nl_assemble); the factor only
@@ -141,10 +136,9 @@ NearLightTable::NearLightTable(Table table) : table_(std::move(table)) {
 }
 
 bool NearLightTable::covers(double T, double g, double r, double S) const {
-    auto inside = [](const Axis &a, double p) { return p >= a.map.min && p <= a.map.max; };
-    if (!inside(table_.axes[0], T) || !inside(table_.axes[1], g) || !inside(table_.axes[2], r)) return false;
-    if (thick_only()) return !std::isfinite(S);
-    return std::isfinite(S) && inside(table_.axes[3], S);
+    const bool e3 = thick_only();
+    return slut_nl_table_covers(table_.axes[0].map, table_.axes[1].map, table_.axes[2].map,
+                                table_.axes[e3 ? 0 : 3].map /* E3: unused */, e3 ? 1 : 0, T, g, r, S) != 0;
 }
 
 double NearLightTable::E(double T, double g, double r, double S) const {
@@ -194,9 +188,10 @@ double NearLightTable::radiance(const NearLightQuery &q) const {
 // warps (one vector log per log-type axis), H (one vector atan), for the 4-D table the slab
 // coordinate (slut_nl_unit_from_S: six vector atans and two vector logs) and the value base
 // (slut_nl_E_base: a vector exp and two vector expm1), the decoding exp; the cells of the four
-// queries are gathered together. The vector forms restate slut_nl_inv_square_integral, the
-// warps of slut_unit_from_warped_runtime and slut_nl_E_base lane-wise (kernels/); the tests
-// compare every query with the scalar call. Queries the vectors do not serve (zero
+// queries are gathered together. The value base takes the kernel's lane-generic expressions
+// (SLUT_NL_THIN_*, SLUT_NL_BASE_OF_THIN); slut_nl_inv_square_integral (why: at
+// inv_square_integral4) and the warps of slut_unit_from_warped_runtime (its scalar form takes
+// its log inside) are restated lane-wise; the tests compare every query with the scalar call. Queries the vectors do not serve (zero
 // radiance, the light at the entry point, T = 0, outside the table, an axis warp without a
 // vector form) take the scalar radiance(q).
 struct NearLightBatch {
@@ -211,6 +206,15 @@ struct NearLightBatch {
     // branches: x = num/|den| with num = len·w (w for len = ∞) and den = hh2 + len·d (d for
     // len = ∞); den > 0: atanc(x)·len/den (1/den for len = ∞); den ≤ 0: (π − atan x)/w, +∞ at
     // w = 0 (den = 0 gives x = ∞, atan x = π/2: π/(2w), as the scalar form's own branch).
+    // Why a restatement and not the kernel's code: the kernel form branches (five cases, each
+    // with its own order of operations, which the default tables depend on to the bit through
+    // the sweep's H), so lane by lane it costs a branchy scalar pass per lane around the vector
+    // atan. Measured with the kernel form split in two steps around one vector atan (argument,
+    // then the integral from atan x) instead of these selects: BM_NearLightRadiance/4 took
+    // 237-249 ns of CPU per query against 154-156 ns (medians of 3 repetitions, two
+    // interleaved rounds, `build/scatterlut_bench --benchmark_filter=BM_NearLightRadiance
+    // --benchmark_repetitions=3`; /3, which does not come here, 97-105 ns in both). The tests
+    // compare every vector query with the scalar path.
     SLUT_SIMD4_TARGET static v4d inv_square_integral4(v4d len, v4d hh2, v4d d, v4d w) {
         const v4d zero = simd4::splat(0.0), one = simd4::splat(1.0);
         const v4l infinite = len > SLUT_INFINITE_ABOVE;
@@ -252,16 +256,19 @@ struct NearLightBatch {
                inv_square_integral4(simd4::splat(HUGE_VAL), d * d + sg * sg, d, sg);
     }
 
-    // slut_nl_E_base(T, r, S) lane-wise, S finite.
+    // slut_nl_E_base(T, r, S) lane-wise, S finite: the kernel's lane-generic expressions
+    // (SLUT_NL_THIN_X, SLUT_NL_THIN_NEEDS_EXPM1, SLUT_NL_THIN_OF_X_WITHOUT_EXPM1,
+    // SLUT_NL_BASE_OF_THIN; kernels/slut_nearlight_approx.h and _slab.h, written once for a
+    // scalar, the table kernel's double16 and these vectors: GCC's ?: and && select per lane),
+    // with the vector exp and expm1.
     SLUT_SIMD4_TARGET static v4d E_base4(v4d T, v4d r, v4d S) {
         const v4d floor_T = simd4::exp4(-T), rise_T = -simd4::expm1_4(-T);
-        const v4d S_eff = S * (T / (S + T));
-        const v4d x = simd4::select(r > SLUT_INFINITE_ABOVE, S_eff, S_eff * ((1.0 + r) / r));
+        const v4d S_eff = S * (T / (S + T)); // slut_nl_base_depth, S finite
+        const v4d x = SLUT_NL_THIN_X(r, S_eff);
         const v4d thin_mid = -simd4::expm1_4(-x) / x;
-        const v4d thin_out = simd4::select(x < SLUT_TINY, simd4::splat(1.0), 1.0 / x);
-        v4d thin = simd4::select((x >= SLUT_TINY) & (x <= 40.0), thin_mid, thin_out);
+        v4d thin = SLUT_NL_THIN_NEEDS_EXPM1(x) ? thin_mid : SLUT_NL_THIN_OF_X_WITHOUT_EXPM1(x);
         thin = simd4::select(S_eff > 0.0, simd4::select(r > 0.0, thin, simd4::splat(0.0)), simd4::splat(1.0));
-        return floor_T + rise_T * thin;
+        return SLUT_NL_BASE_OF_THIN(floor_T, rise_T, thin);
     }
 
     SLUT_SIMD4_TARGET void block(const size_t *index, int lanes) {

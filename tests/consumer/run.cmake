@@ -32,7 +32,9 @@ file(GLOB_RECURSE internal "${moved}/*png_writer*" "${moved}/*scatterlut_png*" "
 if(internal)
   message(FATAL_ERROR "internal files are installed: ${internal}")
 endif()
-foreach(header slut_compat.h slut_axes.h slut_gauss_legendre.h slut_airlight.h slut_nearlight.h)
+foreach(header slut_compat.h slut_axes.h slut_gauss_legendre.h slut_airlight.h slut_nearlight.h slut_nearlight_closed.h
+               slut_nearlight_approx.h slut_nearlight_slab.h slut_nearlight_refraction.h slut_nearlight_frontend.h
+               slut_nearlight_lanes.h slut_nearlight_march.h)
   if(NOT EXISTS "${moved}/include/scatterlut/kernels/${header}")
     message(FATAL_ERROR "${header} is not installed in ${moved}/include/scatterlut/kernels")
   endif()

@@ -16,7 +16,7 @@ namespace {
 TEST(Checks, StayOnWithNdebugAndPrintOperandsAndPlace) {
     GTEST_FLAG_SET(death_test_style, "threadsafe");
     EXPECT_DEATH(slut_distant_light_factor(-0.5, 1.0),
-                 "scatterlut: check failed at .*slut_nearlight\\.h:[0-9]+: r >= 0\\.0 \\(r = -0\\.5, 0\\.0 = 0\\)");
+                 "scatterlut: check failed at .*slut_nearlight_approx\\.h:[0-9]+: r >= 0\\.0 \\(r = -0\\.5, 0\\.0 = 0\\)");
     // NaN fails a check too (every comparison with NaN is false).
     EXPECT_DEATH(slut_nl_E_thin(1.0, std::nan("")), "check failed at .*: S >= 0\\.0 \\(S = nan, 0\\.0 = 0\\)");
 }

@@ -53,7 +53,7 @@ double near_light_radiance_distant(const NearLightQuery &q);
 //  - near_light_E3: axes T, g, r; channel 0 = ln E (S = ∞);
 //  - near_light_E4: axes T, g, r, q; channel 0 = ln(E/B), B = slut_nl_E_base(T, r, S). Axis q
 //    (warp nl_qodds) spans slabs S ∈ [min, max]; its unit coordinate depends on (T, g)
-//    (slut_nl_unit_from_S, kernels/slut_nearlight.h; docs/NEARLIGHT.md).
+//    (slut_nl_unit_from_S, kernels/slut_nearlight_slab.h; docs/NEARLIGHT.md).
 // Outside the table's domain E is integrated exactly (~1 µs), never clamped.
 // Memory: the values as doubles (table()) plus, for f16/f32 storage, a float copy that the
 // lookups read (half the bytes a random lookup touches): 12 bytes per node.

@@ -1,0 +1,87 @@
+/* scatterlut — the lane layer of the near-light sweep: a double16 per block of r values on
+ * the device (OpenCL C), one double on the host (C++).
+ *
+ * Used by kernels/slut_nearlight_march.h only; never compiled by the GPU snippets.
+ */
+#ifndef SLUT_NEARLIGHT_LANES_H
+#define SLUT_NEARLIGHT_LANES_H
+
+#include "slut_compat.h"
+
+#define SLUT_NL_MAX_LANES 16      /* r values sharing one (T, g, S) panel mesh            */
+
+/* ------------------------------------------------------------------ lane vectors */
+
+/* The lanes of a march (the r values sharing one panel mesh, slut_nl_E_sweep) in blocks of
+ * SLUT_NL_LANE_WIDTH elements of type slut_nl_lanes: a double16 on the device (one block for
+ * a full group), a double on the host. Why: per (node, lane) the sweep costs one divide and
+ * one exp; PoCL does not vectorise a scalar loop over the lanes, and in such a loop a scalar
+ * exp costs ~10× what a double8 or double16 exp costs per element (docs/POCL.md, measured on
+ * PoCL 3.1). The sweep is written once on slut_nl_lanes with C operators and the builtins
+ * exp, fmin, fmax (overloaded for vectors in OpenCL C); only these definitions differ
+ * between the languages:
+ *   SLUT_NL_LANES_SPLAT(x)         every element x;
+ *   SLUT_NL_LANES_SELECT(a, b, c)  b where the lane comparison c holds, else a (both evaluated);
+ *   SLUT_NL_LANES_ANY(c)           whether c holds in some element;
+ *   slut_nl_lanes_load             a block from SLUT_NL_LANE_WIDTH consecutive doubles;
+ *   slut_nl_lanes_max / _min       the largest / smallest element;
+ *   slut_nl_expm1_8                expm1 of 8 consecutive doubles (a double8 on the device:
+ *                                  the layer variable's node offsets, slut_nl_E_sweep).
+ * Lane comparisons combine with & (a vector comparison is −1/0 per element, a scalar one 1/0:
+ * never mix the two). */
+#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
+#define SLUT_NL_LANE_WIDTH 16
+typedef double16 slut_nl_lanes;
+#define SLUT_NL_LANES_SPLAT(x) ((double16)(x))
+#define SLUT_NL_LANES_SELECT(a, b, c) select((a), (b), (c))
+#define SLUT_NL_LANES_ANY(c) any(c)
+SLUT_FN slut_nl_lanes slut_nl_lanes_load(const double *p) { return vload16(0, p); }
+SLUT_FN void slut_nl_lanes_store(slut_nl_lanes v, double *p) { vstore16(v, 0, p); }
+SLUT_FN double slut_nl_lanes_max(slut_nl_lanes v) {
+    double8 a = fmax(v.lo, v.hi);
+    double4 b = fmax(a.lo, a.hi);
+    double2 c = fmax(b.lo, b.hi);
+    return fmax(c.x, c.y);
+}
+SLUT_FN double slut_nl_lanes_min(slut_nl_lanes v) {
+    double8 a = fmin(v.lo, v.hi);
+    double4 b = fmin(a.lo, a.hi);
+    double2 c = fmin(b.lo, b.hi);
+    return fmin(c.x, c.y);
+}
+SLUT_FN void slut_nl_expm1_8(const double *x, double *out) { vstore8(expm1(vload8(0, x)), 0, out); }
+#else
+#define SLUT_NL_LANE_WIDTH 1
+typedef double slut_nl_lanes;
+#define SLUT_NL_LANES_SPLAT(x) ((double)(x))
+#define SLUT_NL_LANES_SELECT(a, b, c) ((c) ? (b) : (a))
+#define SLUT_NL_LANES_ANY(c) (c)
+SLUT_FN slut_nl_lanes slut_nl_lanes_load(const double *p) { return *p; }
+SLUT_FN void slut_nl_lanes_store(slut_nl_lanes v, double *p) { *p = v; }
+SLUT_FN double slut_nl_lanes_max(slut_nl_lanes v) { return v; }
+SLUT_FN double slut_nl_lanes_min(slut_nl_lanes v) { return v; }
+SLUT_FN void slut_nl_expm1_8(const double *x, double *out) {
+    for (int k = 0; k < 8; ++k) out[k] = expm1(x[k]);
+}
+#endif
+#define SLUT_NL_LANE_BLOCKS (SLUT_NL_MAX_LANES / SLUT_NL_LANE_WIDTH) /* blocks of a full group */
+
+/* Lanes first_lane … first_lane + W − 1 of out[] (those below `lanes`) from block v. */
+SLUT_FN void slut_nl_lanes_put(slut_nl_lanes v, double *out, int first_lane, int lanes) {
+    double e[SLUT_NL_LANE_WIDTH];
+    slut_nl_lanes_store(v, e);
+    for (int k = 0; k < SLUT_NL_LANE_WIDTH && first_lane + k < lanes; ++k) out[first_lane + k] = e[k];
+}
+
+/* q(τ) = τ/(τ + r): the fraction of the light path inside the medium, for τ > 0 (every
+ * quadrature node and every panel start after the first). r = 0 gives q = 1 exactly (x/x),
+ * r = +∞ gives q = 0. */
+SLUT_FN slut_nl_lanes slut_nl_q(double tau, slut_nl_lanes r) { return tau / (tau + r); }
+
+/* r/(τ + r)² = dq/dτ: the layer's share of the exponent's slope, divided by Tη; 0 for r = 0
+ * and r = +∞ (also at τ = 0, where 0/0 would arise). */
+SLUT_FN slut_nl_lanes slut_nl_layer_slope(double tau, slut_nl_lanes r) {
+    return SLUT_NL_LANES_SELECT(SLUT_NL_LANES_SPLAT(0.0), (r / (tau + r)) / (tau + r), (r > 0.0) & (r <= 1e300));
+}
+
+#endif /* SLUT_NEARLIGHT_LANES_H */
