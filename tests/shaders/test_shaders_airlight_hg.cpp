@@ -33,6 +33,7 @@ extern "C" {
 #include "slut_axes.h"
 }
 
+#include "generate_airlight.hpp"
 #include "gpu_harness.hpp"
 
 namespace {
@@ -54,8 +55,9 @@ const std::vector<double> kPhaseGs = {-0.5, 0.85, 0.95};
 constexpr int kCountU = 128, kCountW = 64;
 constexpr double kUMax = 64.0, kUScale = 1e-7, kWMin = 1e-3;
 
-// The anisotropic airlight table with the generator's axes (host/src/generate_airlight_hg.cpp:
-// u LOG1P scale 1e-7 on [0, 64], w ASINH_COT on [1e-3, pi/2], channel ln_Gs_g, extra phase.g),
+// The anisotropic airlight table with the generator's axes (host/src/generate_airlight.cpp:
+// u LOG1P scale 1e-7 on [0, 64], w on [1e-3, pi/2] ASINH_COT, or for g > 0 ASINH_COT_PEAK with
+// the generator's peak scale (airlight_w_peak_scale), channel ln_Gs_g, extra phase.g),
 // integrated here with the shared quadrature and rounded to f32 as a file round trip would.
 scatterlut::Table make_table(double g) {
     scatterlut::Table t;
@@ -74,8 +76,8 @@ scatterlut::Table make_table(double g) {
     w.meaning = "pi/2 - v (rad)";
     w.map.min = kWMin;
     w.map.max = SLUT_PIO2_HI;
-    w.map.scale = 0.0;
-    w.map.warp = SLUT_WARP_ASINH_COT;
+    w.map.scale = scatterlut::airlight_w_peak_scale(g);
+    w.map.warp = w.map.scale > 0.0 ? SLUT_WARP_ASINH_COT_PEAK : SLUT_WARP_ASINH_COT;
     w.map.count = kCountW;
     t.axes = {u, w};
     scatterlut::Channel c;
