@@ -1,7 +1,8 @@
 // The diffuse surface term of Sun et al. 2005 from a surface_G table (scatterlut/surface_table.hpp):
 // the table filled by quadrature at the nodes, sampled at random off-node points against
 // surface_G_exact; the ends of both axes (θ_s = 0, π/2, π; T = 0, tiny, T_max); E_ss through the
-// table against surface_irradiance_exact; bad tables and out-of-domain queries refused.
+// table against surface_irradiance_exact; bad tables and out-of-domain queries refused; eval's
+// "surface" answering "table" with --table of a saved surface_G file (null outside its T domain).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +11,10 @@
 #include <stdexcept>
 
 #include <gtest/gtest.h>
+#include <sstream>
+
+#include "cli_runner.hpp"
+#include "scatterlut/io.hpp"
 
 #include "scatterlut/surface.hpp"
 #include "scatterlut/surface_table.hpp"
@@ -123,6 +128,37 @@ TEST(SurfaceTable, BadTablesRefused) {
     EXPECT_THROW(surface_G0_layout(10.0, 8, 8), std::invalid_argument); // even θ_s count
     EXPECT_THROW(surface_G0_layout(0.0, 8, 9), std::invalid_argument);
     EXPECT_THROW(surface_G0_layout(std::numeric_limits<double>::infinity(), 8, 9), std::invalid_argument);
+}
+
+TEST(SurfaceTable, EvalAnswersTableWithASavedFile) {
+    const std::string path = slut_test::temp_stem("surface_G") + ".slut";
+    save_binary(surface_G0_table_by_quadrature(kTMax, 64, 65), path);
+    std::ostringstream input;
+    const double thetas[] = {0.0, 0.7, kPi / 2, 2.2, kPi};
+    for (double theta : thetas) // T = (0.3 + 0.1)·20 = 8: inside [0, 30]
+        input << nlohmann::json{{"quantity", "surface"}, {"sigma_s", 0.3}, {"sigma_a", 0.1}, {"intensity", 50.0},
+                                {"distance", 20.0}, {"theta_s", theta}}
+                     .dump()
+              << "\n";
+    // T = 0.4·100 = 40 > 30: outside the table.
+    input << nlohmann::json{{"quantity", "surface"}, {"sigma_s", 0.3}, {"sigma_a", 0.1}, {"intensity", 50.0},
+                            {"distance", 100.0}, {"theta_s", 1.0}}
+                 .dump()
+          << "\n";
+    const auto r = slut_test::run_scatterlut("eval --table " + path, input.str());
+    std::remove(path.c_str());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto lines = slut_test::json_lines(r.out);
+    ASSERT_EQ(lines.size(), 6u);
+    for (size_t i = 0; i < 5; ++i) {
+        const auto &a = lines[i];
+        ASSERT_TRUE(a.at("table").is_number() && a.at("exact").is_number()) << a.dump();
+        const double table = a.at("table").get<double>(), exact = a.at("exact").get<double>();
+        EXPECT_GT(table, 0.0) << a.dump();
+        EXPECT_NEAR(table / exact, 1.0, kAcceptedRel) << a.dump();
+    }
+    EXPECT_TRUE(lines[5].at("table").is_null()) << lines[5].dump();
+    EXPECT_TRUE(lines[5].at("exact").is_number()) << lines[5].dump();
 }
 
 } // namespace
