@@ -78,13 +78,15 @@ SurfaceTable::SurfaceTable(Table table) : table_(std::move(table)) {
             "surface_G table: expected the axes (T, theta_s)");
     const slut_axis &T = table_.axes[0].map, &th = table_.axes[1].map;
     require(T.min == 0.0 && std::isfinite(T.max) && T.max > 0.0, "surface_G table: the T axis must span [0, T_max]");
+    require(T.warp == SLUT_WARP_LOG1P && std::isfinite(T.scale) && T.scale > 0.0,
+            "surface_G table: the T axis must be log1p with a finite scale > 0");
     require(th.min == 0.0 && std::fabs(th.max - kPi) < 1e-12 && th.warp == SLUT_WARP_LINEAR,
             "surface_G table: the theta_s axis must be linear on [0, pi]");
     require(table_.channels.size() == 1 && table_.channels[0].name == "ln_G0_ratio" &&
                 table_.channels[0].encoding == Encoding::Log,
             "surface_G table: expected one Log channel ln_G0_ratio");
     for (size_t k = 0; k < table_.values.size(); ++k)
-        require(std::isfinite(table_.values[k]) && table_.values[k] <= kLnRoundingSlack,
+        require(std::isfinite(table_.values[k]) && table_.values[k] <= kLnRoundingSlack && table_.values[k] > kMinStoredLn,
                 "surface_G table: stored value " + std::to_string(k) + " is not a finite ln ratio <= 0");
     cache_ = make_sampler_cache(table_);
 }

@@ -123,6 +123,15 @@ TEST(SurfaceTable, BadTablesRefused) {
     t.values[4] = 0.5; // ratio e^0.5 > 1: G0 above its no-extinction bound
     EXPECT_THROW(SurfaceTable{t}, std::invalid_argument);
     t = good;
+    t.axes[0].map.warp = SLUT_WARP_LOG; // ln 0 at T = 0
+    EXPECT_THROW(SurfaceTable{t}, std::invalid_argument);
+    t = good;
+    t.axes[0].map.scale = 0.0;
+    EXPECT_THROW(SurfaceTable{t}, std::invalid_argument);
+    t = good;
+    t.values[2] = -2e6; // below any double's logarithm
+    EXPECT_THROW(SurfaceTable{t}, std::invalid_argument);
+    t = good;
     t.channels[0].encoding = Encoding::Linear;
     EXPECT_THROW(SurfaceTable{t}, std::invalid_argument);
     EXPECT_THROW(surface_G0_layout(10.0, 8, 8), std::invalid_argument); // even θ_s count
