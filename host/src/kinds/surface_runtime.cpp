@@ -1,23 +1,23 @@
 // The surface terms' runtime facet (kinds/runtime_kind.hpp): the eval quantities "surface"
 // (E_ss, the scattered irradiance of a surface in the medium) and "surface_specular" (S_n, the
 // Phong-lobe-weighted incident airlight) of Sun et al. 2005 (docs/PHYSICS.md §1.5), exact by
-// quadrature (scatterlut/surface.hpp). No table kind for them exists yet: its name is
-// reserved here, a file of that kind is refused with a clear message, and eval answers
-// "table": null.
+// quadrature (scatterlut/surface.hpp). A loaded surface_G table (scatterlut/surface_table.hpp:
+// the diffuse G0) answers "surface"'s "table" where the query's T = σ_t D lies in its domain
+// ("table": null otherwise, and always for "surface_specular": no G_n table yet).
 #include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "eval.hpp"
 #include "kinds/runtime_kind.hpp"
 #include "scatterlut/surface.hpp"
+#include "scatterlut/surface_table.hpp"
 
 namespace scatterlut {
 namespace {
-
-constexpr const char *kKindSurfaceG = "surface_G"; // G0/G_n tables: not written by this version
 
 SurfaceQuery surface_query(const nlohmann::json &q, const char *theta_field) {
     SurfaceQuery s;
@@ -47,19 +47,21 @@ int surface_exponent(const nlohmann::json &q) {
 class SurfaceRuntime final : public RuntimeKind {
 public:
     const char *name() const override { return kKindSurfaceG; }
-    std::shared_ptr<const RuntimeSampler> make_sampler(Table) const override {
-        throw std::invalid_argument(std::string("table kind '") + kKindSurfaceG +
-                                    "': this version computes the surface terms exactly only and reads no such table");
+    std::shared_ptr<const RuntimeSampler> make_sampler(Table table) const override {
+        return std::make_shared<SamplerOf<SurfaceTable>>(std::move(table));
     }
     std::vector<std::string> eval_quantities() const override { return {"surface", "surface_specular"}; }
     void answer_eval(const std::string &quantity, const nlohmann::json &q, nlohmann::json &out,
-                     const EvalTables &) const override {
+                     const EvalTables &tables) const override {
         if (quantity == "surface") {
             const SurfaceQuery s = surface_query(q, "theta_s");
             eval_put(out, "exact", surface_irradiance_exact(s)); // validates the query
-            out["table"] = nullptr;
-            eval_put(out, "no_extinction", surface_irradiance_no_extinction(s));
             const double T = (s.sigma_s_per_m + s.sigma_a_per_m) * s.distance_m;
+            const SurfaceTable *table = first_runtime<SurfaceTable>(
+                tables.samplers, [T](const SurfaceTable &t) { return T <= t.T_max(); });
+            if (table) eval_put(out, "table", table->irradiance(s));
+            else out["table"] = nullptr;
+            eval_put(out, "no_extinction", surface_irradiance_no_extinction(s));
             eval_put(out, "direct", s.intensity_W_per_sr * std::exp(-T) * std::fmax(std::cos(s.theta_rad), 0.0) /
                                         (s.distance_m * s.distance_m));
             return;
