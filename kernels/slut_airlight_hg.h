@@ -42,6 +42,7 @@
 #include "slut_compat.h"
 #include "slut_phase.h"
 #include "slut_airlight.h" /* the isotropic functions g = 0 hands to; slut_gl16_x/w; slut_exp_expint */
+#include "slut_axes.h"     /* the w axis warps (slut_hg_airlight_w_warp) */
 
 /* ------------------------------------------------------------ the scaled integrand */
 
@@ -429,6 +430,16 @@ SLUT_FN double slut_hg_airlight_bracket_from_gs(slut_hg_airlight_ends e, double 
         if (SLUT_ISFINITE(a) && SLUT_ISFINITE(b) && b <= 0.5 * a && a > 0.0) return (a - b) / e.sin_gamma;
     }
     return slut_hg_airlight_bracket(e.optical_distance, e.sin_half, e.cos_half, e.s_over_D, g, 1.0);
+}
+
+/* The anisotropic table's w axis (its map is recorded in the file; this is the generator's
+ * choice, here once for the generator and the snippets' convenience constructors): for g > 0
+ * ASINH_COT_PEAK with scale s = (1 − g)/(2(1 + g)), half the forward peak's width (1 − g)/(1 + g)
+ * in tan ξ — the best of 1/8 … 2 times that width by the sampling error against node count
+ * (docs/AIRLIGHT.md); for g ≤ 0 ASINH_COT, the isotropic table's map (scale unused: 0). */
+SLUT_FN double slut_hg_airlight_w_peak_scale(double g) { return (g > 0.0) ? 0.5 * (1.0 - g) / (1.0 + g) : 0.0; }
+SLUT_FN int slut_hg_airlight_w_warp(double g) {
+    return (g > 0.0) ? SLUT_WARP_ASINH_COT_PEAK : SLUT_WARP_ASINH_COT;
 }
 
 #endif /* SLUT_AIRLIGHT_HG_H */

@@ -36,7 +36,7 @@ Table make_airlight_table_layout(const AirlightPlan &plan) {
     const double peak_scale = airlight_w_peak_scale(plan.phase_g);
     t.axes = {make_axis("u", u_meaning.c_str(), 0.0, plan.u_max, plan.u_scale, SLUT_WARP_LOG1P, plan.n_u),
               make_axis("w", w_meaning.c_str(), plan.w_min, SLUT_PIO2_HI, peak_scale,
-                        peak_scale > 0.0 ? SLUT_WARP_ASINH_COT_PEAK : SLUT_WARP_ASINH_COT, plan.n_w)};
+                        slut_hg_airlight_w_warp(plan.phase_g), plan.n_w)};
     Channel c;
     c.encoding = Encoding::Log;
     if (isotropic) {
@@ -56,11 +56,7 @@ Table make_airlight_table_layout(const AirlightPlan &plan) {
     return t;
 }
 
-double airlight_w_peak_scale(double phase_g) {
-    if (!(phase_g > 0.0)) return 0.0;
-    // Half the peak's width: measured best of 1/8 … 2 × (1 − g)/(1 + g) (docs/AIRLIGHT.md).
-    return 0.5 * (1.0 - phase_g) / (1.0 + phase_g);
-}
+double airlight_w_peak_scale(double phase_g) { return slut_hg_airlight_w_peak_scale(phase_g); }
 
 double airlight_table_phase_g(const Table &table) { return table.kind == kKindAirlightFg ? table_phase_g(table) : 0.0; }
 
