@@ -1,5 +1,7 @@
 #include "scatterlut/airlight.hpp"
 
+#include "require.hpp"
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -15,13 +17,7 @@ extern "C" {
 namespace scatterlut {
 namespace {
 
-void require(bool ok, const std::string &message) {
-    if (!ok) throw std::invalid_argument(message);
-}
-// Literal messages: no std::string built on the hot path (radiance checks every query).
-void require(bool ok, const char *message) {
-    if (!ok) throw std::invalid_argument(message);
-}
+using detail::require; // require.hpp
 
 // From the half angle h = γ/2 (clamped to π/2 against the rounding the check allows):
 // w2 = π/2 − h exactly, sin h and cos h by slut_sincos_half_angle (no libm call). The far

@@ -1,5 +1,7 @@
 #include "scatterlut/airlight_hg.hpp"
 
+#include "require.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -14,9 +16,7 @@ extern "C" {
 namespace scatterlut {
 namespace {
 
-void require(bool ok, const std::string &message) {
-    if (!ok) throw std::invalid_argument(message);
-}
+using detail::require; // require.hpp
 
 } // namespace
 

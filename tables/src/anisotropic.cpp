@@ -1,5 +1,7 @@
 #include "scatterlut/anisotropic.hpp"
 
+#include "require.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -11,9 +13,7 @@ extern "C" {
 namespace scatterlut {
 namespace {
 
-void require(bool ok, const char *message) {
-    if (!ok) throw std::invalid_argument(message);
-}
+using detail::require; // require.hpp
 
 // The anisotropic airlight of one channel (q validated, phase_g ≠ 0).
 double airlight_hg(const AirlightQuery &q, double phase_g) {

@@ -1,5 +1,7 @@
 #include "scatterlut/nearlight.hpp"
 
+#include "require.hpp"
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -15,13 +17,7 @@ extern "C" {
 namespace scatterlut {
 namespace {
 
-void require(bool ok, const std::string &message) {
-    if (!ok) throw std::invalid_argument(message);
-}
-// Literal messages: no std::string built on the hot path (radiance checks every query).
-void require(bool ok, const char *message) {
-    if (!ok) throw std::invalid_argument(message);
-}
+using detail::require; // require.hpp
 
 bool unit_vector(const double *v) {
     const double n2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];

@@ -1,5 +1,7 @@
 #include "scatterlut/nearlight_hg.hpp"
 
+#include "require.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -12,9 +14,7 @@ extern "C" {
 namespace scatterlut {
 namespace {
 
-void require(bool ok, const std::string &message) {
-    if (!ok) throw std::invalid_argument(message);
-}
+using detail::require; // require.hpp
 
 double phase_g_of(const Table &t) {
     require(t.kind == kKindNearLightE3Hg || t.kind == kKindNearLightE4Hg,

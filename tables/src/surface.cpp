@@ -1,5 +1,7 @@
 #include "scatterlut/surface.hpp"
 
+#include "require.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -13,11 +15,7 @@ extern "C" {
 namespace scatterlut {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-void require(bool ok, const std::string &message) {
-    if (!ok) throw std::invalid_argument(message);
-}
+using detail::require; // require.hpp
 
 bool finite_non_negative(double x) { return std::isfinite(x) && x >= 0.0; }
 
@@ -72,10 +70,10 @@ void evaluate(const GIntegrand &f, Panel &p) {
 
 // The break points of G_n's integrand in γ ∈ [0, π] (docs/PHYSICS.md §1.5).
 std::vector<double> break_points(int n, double T, double theta) {
-    std::vector<double> b = {0.0, kPi};
-    double g1 = std::fabs(0.5 * kPi - theta);
+    std::vector<double> b = {0.0, SLUT_PI};
+    double g1 = std::fabs(0.5 * SLUT_PI - theta);
     b.push_back(g1);
-    b.push_back(kPi - g1);
+    b.push_back(SLUT_PI - g1);
     if (n > 1) {
         double width = 1.0 / std::sqrt(static_cast<double>(n));
         for (double k : {0.0, -4.0, 4.0, -12.0, 12.0}) b.push_back(theta + k * width);
@@ -86,12 +84,12 @@ std::vector<double> break_points(int n, double T, double theta) {
     }
     std::vector<double> kept;
     for (double x : b)
-        if (x >= 0.0 && x <= kPi) kept.push_back(x);
+        if (x >= 0.0 && x <= SLUT_PI) kept.push_back(x);
     std::sort(kept.begin(), kept.end());
     std::vector<double> out;
     for (double x : kept)
         if (out.empty() || x - out.back() > 1e-12) out.push_back(x);
-    if (out.back() < kPi) out.push_back(kPi);
+    if (out.back() < SLUT_PI) out.push_back(SLUT_PI);
     return out;
 }
 
@@ -102,15 +100,15 @@ void check_surface_query(const SurfaceQuery &q) {
     require(finite_non_negative(q.sigma_a_per_m), "sigma_a must be finite and >= 0 (1/m)");
     require(finite_non_negative(q.intensity_W_per_sr), "intensity must be finite and >= 0 (W/sr)");
     require(q.distance_m > 0.0 && std::isfinite(q.distance_m), "distance must be finite and > 0 (m)");
-    require(q.theta_rad >= 0.0 && q.theta_rad <= kPi + 1e-15, "theta must be in [0, pi] (rad)");
+    require(q.theta_rad >= 0.0 && q.theta_rad <= SLUT_PI + 1e-15, "theta must be in [0, pi] (rad)");
 }
 
 double surface_G_exact(int exponent, double optical_distance, double theta_rad) {
     require(exponent >= 1 && exponent <= kSurfaceMaxExponent,
             "exponent must be an integer in [1, " + std::to_string(kSurfaceMaxExponent) + "]");
     require(finite_non_negative(optical_distance), "optical distance sigma_t*D must be finite and >= 0");
-    require(theta_rad >= 0.0 && theta_rad <= kPi + 1e-15, "theta must be in [0, pi] (rad)");
-    double theta = std::min(theta_rad, kPi);
+    require(theta_rad >= 0.0 && theta_rad <= SLUT_PI + 1e-15, "theta must be in [0, pi] (rad)");
+    double theta = std::min(theta_rad, SLUT_PI);
     std::vector<double> b = break_points(exponent, optical_distance, theta);
     GIntegrand f(exponent, optical_distance, theta, b[1]);
     std::vector<Panel> panels;
@@ -147,7 +145,7 @@ double surface_G_exact(int exponent, double optical_distance, double theta_rad) 
 
 double surface_irradiance_exact(const SurfaceQuery &q) {
     check_surface_query(q);
-    double prefactor = q.sigma_s_per_m * q.intensity_W_per_sr / (4.0 * kPi * q.distance_m);
+    double prefactor = q.sigma_s_per_m * q.intensity_W_per_sr / (4.0 * SLUT_PI * q.distance_m);
     if (prefactor == 0.0) return 0.0;
     double T = (q.sigma_s_per_m + q.sigma_a_per_m) * q.distance_m;
     return prefactor * surface_G_exact(1, T, q.theta_rad);
@@ -155,7 +153,7 @@ double surface_irradiance_exact(const SurfaceQuery &q) {
 
 double surface_specular_exact(const SurfaceQuery &q, int exponent) {
     check_surface_query(q);
-    double prefactor = q.sigma_s_per_m * q.intensity_W_per_sr / (4.0 * kPi * q.distance_m);
+    double prefactor = q.sigma_s_per_m * q.intensity_W_per_sr / (4.0 * SLUT_PI * q.distance_m);
     if (prefactor == 0.0) {
         require(exponent >= 1 && exponent <= kSurfaceMaxExponent,
                 "exponent must be an integer in [1, " + std::to_string(kSurfaceMaxExponent) + "]");
@@ -167,8 +165,8 @@ double surface_specular_exact(const SurfaceQuery &q, int exponent) {
 
 double surface_irradiance_no_extinction(const SurfaceQuery &q) {
     check_surface_query(q);
-    double prefactor = q.sigma_s_per_m * q.intensity_W_per_sr / (4.0 * kPi * q.distance_m);
-    return prefactor * slut_surface_G0_no_extinction(std::min(q.theta_rad, kPi));
+    double prefactor = q.sigma_s_per_m * q.intensity_W_per_sr / (4.0 * SLUT_PI * q.distance_m);
+    return prefactor * slut_surface_G0_no_extinction(std::min(q.theta_rad, SLUT_PI));
 }
 
 } // namespace scatterlut

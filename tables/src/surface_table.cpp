@@ -1,5 +1,7 @@
 #include "scatterlut/surface_table.hpp"
 
+#include "require.hpp"
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -12,11 +14,7 @@ extern "C" {
 namespace scatterlut {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-void require(bool ok, const std::string &message) {
-    if (!ok) throw std::invalid_argument(message);
-}
+using detail::require; // require.hpp
 
 // e^{−T} G0(0, θ_s): the closed-form scale the table's ratio multiplies.
 double closed_form_scale(double optical_distance, double theta_rad) {
@@ -40,7 +38,7 @@ Table surface_G0_layout(double T_max, int T_count, int theta_count) {
     Axis theta;
     theta.name = "theta_s";
     theta.meaning = "angle between the surface normal and the direction to the light (rad)";
-    theta.map = slut_axis{0.0, kPi, 1.0, SLUT_WARP_LINEAR, theta_count};
+    theta.map = slut_axis{0.0, SLUT_PI, 1.0, SLUT_WARP_LINEAR, theta_count};
     t.axes = {T, theta};
     Channel c;
     c.name = "ln_G0_ratio";
@@ -80,7 +78,7 @@ SurfaceTable::SurfaceTable(Table table) : table_(std::move(table)) {
     require(T.min == 0.0 && std::isfinite(T.max) && T.max > 0.0, "surface_G table: the T axis must span [0, T_max]");
     require(T.warp == SLUT_WARP_LOG1P && std::isfinite(T.scale) && T.scale > 0.0,
             "surface_G table: the T axis must be log1p with a finite scale > 0");
-    require(th.min == 0.0 && std::fabs(th.max - kPi) < 1e-12 && th.warp == SLUT_WARP_LINEAR,
+    require(th.min == 0.0 && std::fabs(th.max - SLUT_PI) < 1e-12 && th.warp == SLUT_WARP_LINEAR,
             "surface_G table: the theta_s axis must be linear on [0, pi]");
     require(table_.channels.size() == 1 && table_.channels[0].name == "ln_G0_ratio" &&
                 table_.channels[0].encoding == Encoding::Log,
@@ -95,7 +93,7 @@ double SurfaceTable::G0(double optical_distance, double theta_rad) const {
     require(optical_distance >= 0.0 && optical_distance <= T_max(),
             "surface_G table: T = " + std::to_string(optical_distance) + " outside the table's [0, " +
                 std::to_string(T_max()) + "]");
-    require(theta_rad >= 0.0 && theta_rad <= kPi, "surface_G table: theta_s must lie in [0, pi]");
+    require(theta_rad >= 0.0 && theta_rad <= SLUT_PI, "surface_G table: theta_s must lie in [0, pi]");
     const double params[2] = {optical_distance, theta_rad};
     return sample(table_, cache_, params, 0) * closed_form_scale(optical_distance, theta_rad);
 }
@@ -104,7 +102,7 @@ double SurfaceTable::irradiance(const SurfaceQuery &q) const {
     check_surface_query(q);
     if (q.sigma_s_per_m == 0.0 || q.intensity_W_per_sr == 0.0) return 0.0;
     const double T = (q.sigma_s_per_m + q.sigma_a_per_m) * q.distance_m;
-    return q.sigma_s_per_m * q.intensity_W_per_sr / (4.0 * kPi * q.distance_m) * G0(T, q.theta_rad);
+    return q.sigma_s_per_m * q.intensity_W_per_sr / (4.0 * SLUT_PI * q.distance_m) * G0(T, q.theta_rad);
 }
 
 } // namespace scatterlut
