@@ -49,10 +49,17 @@ __kernel void nearlight_ln_E(__global double *out,
     int lanes = min(SLUT_NL_MAX_LANES, r_count - ir0);
     double r[SLUT_NL_MAX_LANES], S[SLUT_NL_MAX_SWEEP], E[SLUT_NL_MAX_SWEEP * SLUT_NL_MAX_LANES];
     for (int l = 0; l < SLUT_NL_MAX_LANES; ++l) r[l] = r_nodes[min(ir0 + l, ir0 + lanes - 1)];
-    double floor_T = exp(-T), rise_T = -expm1(-T); /* the value base's factors of T alone */
-    /* SLUT_NL_THIN_X is S times a factor of r alone (1 where r = ∞): that factor once here,
-     * then x = S_eff × it per S node (the same product, bit for bit). */
-    slut_nl_lanes thin_x_per_S = SLUT_NL_THIN_X(slut_nl_lanes_load(r), 1.0);
+    /* The value base's factors of T alone, and SLUT_NL_THIN_X as S times a factor of r alone
+     * (1 where r = ∞): that factor once here, then x = S_eff × it per S node (the same
+     * product, bit for bit). A thick table (one S node) needs none of them: its scalar
+     * expm1 and lane divides are skipped. */
+    double floor_T = 1.0, rise_T = 0.0;
+    slut_nl_lanes thin_x_per_S = SLUT_NL_LANES_SPLAT(1.0);
+    if (S_count > 1) {
+        floor_T = exp(-T);
+        rise_T = -expm1(-T);
+        thin_x_per_S = SLUT_NL_THIN_X(slut_nl_lanes_load(r), 1.0);
+    }
     for (int iS0 = 0; iS0 < S_count; iS0 += SLUT_NL_MAX_SWEEP) {
         int n_S = min(SLUT_NL_MAX_SWEEP, S_count - iS0);
         if (S_count == 1) S[0] = S_min;

@@ -226,7 +226,9 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
     double inv_H = 1.0 / H_next;
     double sg2 = sg * sg, half_peak = -0.5 * g;
     double tail_eps = SLUT_NL_TAIL_EPS / pow(refine, 15.0);
-    int blocks = (lanes + SLUT_NL_LANE_WIDTH - 1) / SLUT_NL_LANE_WIDTH;
+    /* One block where a block holds every lane (the device's double16): a constant, so that
+     * the sums and r stay in registers instead of an array indexed at run time. */
+    int blocks = (SLUT_NL_LANE_BLOCKS == 1) ? 1 : (lanes + SLUT_NL_LANE_WIDTH - 1) / SLUT_NL_LANE_WIDTH;
     for (j = 0; j < blocks * SLUT_NL_LANE_WIDTH; ++j) {
         double r_j = r[(j < lanes) ? j : lanes - 1];
         SLUT_CHECK_GE(r_j, 0.0);
@@ -331,11 +333,21 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
                 wt[2 * k] = wt[2 * k + 1] = half_len * slut_gl16_w[k];
             }
         }
+        /* Each node's τ, η and weight over η², SLUT_NL_LANE_WIDTH nodes at a time (the
+         * device's double16: the 16 nodes' sqrt and divide as one vector each, correctly
+         * rounded like the scalar ones), then the lanes node by node. */
+        double tn_at[16], en_at[16], base_at[16];
+        for (int n = 0; n < 16; n += SLUT_NL_LANE_WIDTH) {
+            slut_nl_lanes o = slut_nl_lanes_load(&off[n]), tn, dn;
+            if (carry_d) { dn = dl + o; tn = dn - g; }
+            else { tn = tau + o; dn = tn + g; }
+            slut_nl_lanes en2 = dn * dn + sg2;
+            slut_nl_lanes_store(tn, &tn_at[n]);
+            slut_nl_lanes_store(sqrt(en2), &en_at[n]);
+            slut_nl_lanes_store(slut_nl_lanes_load(&wt[n]) * inv_H / en2, &base_at[n]);
+        }
         for (int n = 0; n < 16; ++n) {
-            double tn = carry_d ? (dl + off[n]) - g : tau + off[n];
-            double dn = carry_d ? dl + off[n] : tn + g;
-            double en2 = dn * dn + sg2, en = sqrt(en2);
-            double base = wt[n] * inv_H / en2;
+            double tn = tn_at[n], en = en_at[n], base = base_at[n];
             for (b = 0; b < blocks; ++b) sum[b] += base * exp(-T * (tn + en * slut_nl_q(tn, rr[b])));
             ++nodes;
         }
