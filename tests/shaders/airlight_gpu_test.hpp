@@ -78,6 +78,7 @@ struct Query {
     double reference = 0;                  // the C++ code on the same (rounded) inputs
     double optical_distance = 0;           // sigma_t D (the float exp's error grows with it)
     double cell_jump = 0;                  // |d ln Gs| across the table cells sampled
+    double own_tolerance = 0;              // what this query adds to its category's tolerance
     std::string label;                     // the category, for the statistics
 };
 

@@ -49,9 +49,13 @@ const std::string &snippet(const std::string &lang) {
 }
 
 // Every regime and entry point at these g; at g = 0.99 only G~_g just beyond u_max at the
-// forward peak (kPeakOnlyG): elsewhere the peak (width (1 - g)/(1 + g) = 0.005 in tan v) makes
-// G~_g so steep in w near pi/2 that float's own rounding of w there (6e-8) moves it by up to
-// ~1.4e-5 (measured; docs/SHADERS.md), beyond the isotropic test's 1e-5.
+// forward peak (kPeakOnlyG). There the peak (width (1 - g)/(1 + g) = 0.005 in tan v) makes
+// G~_g steep in w near pi/2: the float pi/2 - w of the snippet's sin/cos, (SLUT_PIO2_HI - w) +
+// SLUT_PIO2_LO, loses its 4.4e-8 of SLUT_PIO2_LO where the GPU compiler reassociates the two
+// constants (Mesa does: the GPU results equal the double ones at that w to 7 digits), which moves
+// G~_g by up to 1.2e-5 at g = 0.99 (below 5e-6 at g <= 0.95, inside the 1e-5). Those queries add
+// exactly that shift to their tolerance (w_fold_shift); elsewhere the same rounding of the ends
+// w2, w1 of a radiance at g = 0.99 measured 1.8e-5 (docs/SHADERS.md).
 const std::vector<double> kPhaseGs = {-0.5, 0.85, 0.95};
 constexpr double kPeakOnlyG = 0.99;
 std::vector<double> all_phase_gs() {
@@ -107,6 +111,16 @@ double radiance_cell_jump(const scatterlut::AirlightHgTable &table, const scatte
     return std::max(cell_jump(table, e.u, e.w2), e.w1 > 0.0 ? cell_jump(table, e.u, e.w1) : 0.0);
 }
 
+// |relative change of G~_g(u, w)| when pi/2 - w loses SLUT_PIO2_LO (the float pi/2 - w a GPU
+// compiler that folds (SLUT_PIO2_HI - w) + SLUT_PIO2_LO into (SLUT_PIO2_HI + SLUT_PIO2_LO) - w
+// computes); 0 below pi/4, where sin and cos take w itself.
+double w_fold_shift(const scatterlut::AirlightHgTable &table, double u, double w) {
+    if (w <= kPi / 4) return 0.0;
+    const double pio2_float = static_cast<float>(kPi / 2); // SLUT_PIO2_HI, exactly
+    const double folded = kPi / 2 - (pio2_float - w);     // the w whose pi/2 - w that is
+    return std::fabs(table.scaled_tail(u, folded) / table.scaled_tail(u, w) - 1.0);
+}
+
 std::vector<Query> make_queries(double g) {
     const scatterlut::AirlightHgTable &table = table_for(g);
     std::mt19937_64 rng(20261202 + static_cast<uint64_t>(std::lround(100 * (g + 1))));
@@ -141,6 +155,7 @@ std::vector<Query> make_queries(double g) {
         q.gpu[1] = static_cast<float>(kUMax * (1.0 + (i % 4 == 0 ? 1e-3 * unit(rng) : 0.5 * unit(rng))));
         q.gpu[2] = static_cast<float>(kPi / 2 - (i % 10 == 0 ? 0.0 : log_uniform(rng, 1e-6, 0.03)));
         q.reference = table.scaled_tail(q.gpu[1], q.gpu[2]);
+        if (peak_only) q.own_tolerance = w_fold_shift(table, q.gpu[1], q.gpu[2]);
         q.label = "Gs";
         out.push_back(q);
     }
@@ -394,8 +409,9 @@ void expect_agreement(const std::vector<float> &got, double g, const std::string
         std::vector<size_t> indices;
         for (size_t i = 0; i < qs.size(); ++i)
             if (qs[i].label == label) indices.push_back(i);
+        if (indices.empty()) continue; // kPeakOnlyG: G~_g only
         const auto tolerance = [&](size_t i) {
-            return label == "Gs" ? kTolGs + kTexelRounding * qs[i].cell_jump
+            return label == "Gs" ? kTolGs + kTexelRounding * qs[i].cell_jump + qs[i].own_tolerance
                                  : kTolRadiance + kTolPerOpticalDistance * qs[i].optical_distance +
                                        2.0 * kTexelRounding * qs[i].cell_jump;
         };
