@@ -176,6 +176,33 @@ void main(uint3 id : SV_DispatchThreadID) {
 )hlsl";
 }
 
+// glslang on a snippet's compute shaders (glsl_source / hlsl_source of the hardware-filter flag),
+// with and without the hardware filter: GLSL for OpenGL and for Vulkan (SPIR-V), HLSL to SPIR-V.
+// Files named by `tag` in the scratch directory.
+template <class GlslSource, class HlslSource>
+void expect_compute_shaders_compile(const std::string &tag, const GlslSource &glsl_source,
+                                    const HlslSource &hlsl_source) {
+    for (bool hw : {false, true}) {
+        SCOPED_TRACE(hw ? "hardware filter" : "texel-fetch path");
+        const std::string name = tag + (hw ? "_compute_hw" : "_compute");
+        EXPECT_EQ(glslang(name + ".comp", glsl_source(hw), ""), "");
+        EXPECT_EQ(glslang(name + "_vk.comp", glsl_source(hw), "-V -o " + quoted(scratch_dir() + "/" + name + "_vk.spv")), "");
+        EXPECT_EQ(glslang(name + ".hlsl", hlsl_source(hw),
+                          "-D -V -e main -S comp -o " + quoted(scratch_dir() + "/" + name + "_hlsl.spv")),
+                  "");
+    }
+}
+
+// glslang on an engine's shaders around a snippet (compile checks): a GLSL fragment shader, a
+// GLSL ES 3.00 one and an HLSL pixel shader (to SPIR-V). Files named by `tag`.
+inline void expect_engine_shaders_compile(const std::string &tag, const std::string &glsl_fragment,
+                                          const std::string &essl_fragment, const std::string &hlsl_pixel) {
+    EXPECT_EQ(glslang(tag + "_fragment.frag", glsl_fragment, ""), "");
+    EXPECT_EQ(glslang(tag + "_fragment_es.frag", essl_fragment, ""), "");
+    EXPECT_EQ(glslang(tag + "_pixel.hlsl", hlsl_pixel, "-D -V -e main -S frag -o " + quoted(scratch_dir() + "/" + tag + "_pixel.spv")),
+              "");
+}
+
 // relative error; infinities must match, NaN never does, 0 only by 0.
 inline double rel_err(double got, double want) {
     if (std::isinf(want) || std::isinf(got)) return (got == want) ? 0.0 : std::numeric_limits<double>::infinity();

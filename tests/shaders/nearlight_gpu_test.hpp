@@ -177,7 +177,8 @@ inline Query zero_limit(Query z, int k) {
 
 // The compute shader around a near-light snippet (gpu_harness::glsl_compute_source with a 3-D
 // table): `body` may call test_axis(k) (axis k of the parameters), test_table() (the table of
-// those axes) and test_vec(b) (three floats of the queries) and read `layers` and `phase_g`;
+// those axes) and test_vec(b) (three floats of the queries), declare a query's geometry with
+// TEST_GEOMETRY(b), and read `layers` and `phase_g`;
 // the parameters (std140) are Params of run_queries below.
 inline const char *kTestAxis = R"slsl(
 SlutAxis test_axis(int k) {
@@ -190,6 +191,10 @@ SlutNearLightTable test_table() {
 }
 // The vector q[b], q[b + 1], q[b + 2].
 SLUT_FLOAT3 test_vec(int b) { return SLUT_FLOAT3(q[b], q[b + 1], q[b + 2]); }
+// The geometry of the query at q[b]: normal n, eye direction e, light l, fresnel.
+#define TEST_GEOMETRY(b) \
+    SLUT_FLOAT3 n = test_vec(b + 5); SLUT_FLOAT3 e = test_vec(b + 8); SLUT_FLOAT3 l = test_vec(b + 11); \
+    bool fresnel = q[b + 16] != 0.0
 )slsl";
 inline std::string glsl_compute_source(const std::string &snippet, const std::string &body, const std::string &defines) {
     return gpu_harness::glsl_compute_source(

@@ -524,22 +524,10 @@ TEST(ShaderAirlightHgQueries, CoverEveryRegimeAndBranch) {
 
 TEST(ShaderAirlightHgGlslang, GlslEsslAndHlslCompile) {
     if (kGlslang.empty()) SLUT_SKIP_OR_FAIL("glslangValidator was not found at configure time (Debian: glslang-tools)");
-    for (bool hw : {false, true}) {
-        SCOPED_TRACE(hw ? "SLUT_AIRLIGHT_HARDWARE_FILTER" : "texel-fetch path");
-        const std::string tag = hw ? "_hw" : "";
-        EXPECT_EQ(glslang("hg_compute" + tag + ".comp", glsl_compute_source(hw), ""), "");
-        EXPECT_EQ(glslang("hg_vk_compute" + tag + ".comp", glsl_compute_source(hw),
-                          "-V -o " + quoted(scratch_dir() + "/hg_vk_compute" + tag + ".spv")),
-                  "");
-        EXPECT_EQ(glslang("hg_compute" + tag + ".hlsl", hlsl_compute_source(hw),
-                          "-D -V -e main -S comp -o " + quoted(scratch_dir() + "/hg_compute_hlsl" + tag + ".spv")),
-                  "");
-    }
-    EXPECT_EQ(glslang("hg_fragment.frag", glsl_fragment_source("330", "glsl"), ""), "");
-    EXPECT_EQ(glslang("hg_fragment_es.frag", glsl_fragment_source("300 es", "essl"), ""), "");
-    EXPECT_EQ(glslang("hg_pixel.hlsl", hlsl_pixel_source(),
-                      "-D -V -e main -S frag -o " + quoted(scratch_dir() + "/hg_pixel_hlsl.spv")),
-              "");
+    expect_compute_shaders_compile("hg", [](bool hw) { return glsl_compute_source(hw); },
+                                   [](bool hw) { return hlsl_compute_source(hw); });
+    expect_engine_shaders_compile("hg", glsl_fragment_source("330", "glsl"), glsl_fragment_source("300 es", "essl"),
+                                  hlsl_pixel_source());
 }
 
 // ----------------------------------------------------------------------------- GPU

@@ -214,10 +214,7 @@ float test_eval(int i) {
     SlutNearLightTable t = test_table();
     int b = 20 * i;
     int mode = int(q[b]);
-    SLUT_FLOAT3 n = test_vec(b + 5);
-    SLUT_FLOAT3 e = test_vec(b + 8);
-    SLUT_FLOAT3 l = test_vec(b + 11);
-    bool fresnel = q[b + 16] != 0.0;
+    TEST_GEOMETRY(b);
     if (mode == 0) return slut_near_light_E(SLUT_TEX_ARG(slut_test_table), t, q[b + 2], q[b + 3], q[b + 4], q[b + 5]);
     if (mode == 1)
         return slut_near_light_radiance(SLUT_TEX_ARG(slut_test_table), t, q[b + 2], q[b + 3], q[b + 4], n, e, l,
@@ -430,24 +427,11 @@ TEST(NearLightShaderSources, OneBodyFromTheCHeaders) {
 
 TEST(NearLightShaderGlslang, GlslAndHlslCompile) {
     if (kGlslang.empty()) SLUT_SKIP_OR_FAIL("glslangValidator was not found at configure time (Debian: glslang-tools)");
-    for (bool hw : {false, true}) {
-        SCOPED_TRACE(hw ? "SLUT_NEARLIGHT_HARDWARE_FILTER" : "texel-fetch path");
-        const std::string tag = hw ? "_hw" : "";
-        EXPECT_EQ(glslang("nl_compute" + tag + ".comp", glsl_compute_source(hw), ""), "");
-        EXPECT_EQ(glslang("nl_vk_compute" + tag + ".comp", glsl_compute_source(hw),
-                          "-V -o " + gpu_harness::quoted(scratch_dir() + "/nl_vk_compute" + tag + ".spv")),
-                  "");
-        EXPECT_EQ(glslang("nl_compute" + tag + ".hlsl", hlsl_compute_source(hw),
-                          "-D -V -e main -S comp -o " + gpu_harness::quoted(scratch_dir() + "/nl_compute_hlsl" + tag + ".spv")),
-                  "");
-    }
+    expect_compute_shaders_compile("nl", [](bool hw) { return glsl_compute_source(hw); },
+                                   [](bool hw) { return hlsl_compute_source(hw); });
     // Both snippets in one shader (the shared part once): GLSL 3.30, GLSL ES 3.00 and an
     // HLSL pixel shader.
-    EXPECT_EQ(glslang("nl_fragment.frag", glsl_fragment_source(false), ""), "");
-    EXPECT_EQ(glslang("nl_fragment_es.frag", glsl_fragment_source(true), ""), "");
-    EXPECT_EQ(glslang("nl_pixel.hlsl", hlsl_pixel_source(),
-                      "-D -V -e main -S frag -o " + gpu_harness::quoted(scratch_dir() + "/nl_pixel.spv")),
-              "");
+    expect_engine_shaders_compile("nl", glsl_fragment_source(false), glsl_fragment_source(true), hlsl_pixel_source());
 }
 
 class NearLightGpu : public GpuTest {

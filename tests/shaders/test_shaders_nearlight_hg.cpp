@@ -226,10 +226,7 @@ float test_eval(int i) {
     SlutNearLightHgTable t = slut_near_light_hg_table(test_table(), phase_g);
     int b = 20 * i;
     int mode = int(q[b]);
-    SLUT_FLOAT3 n = test_vec(b + 5);
-    SLUT_FLOAT3 e = test_vec(b + 8);
-    SLUT_FLOAT3 l = test_vec(b + 11);
-    bool fresnel = q[b + 16] != 0.0;
+    TEST_GEOMETRY(b);
     if (mode == 0) return slut_near_light_hg_E(SLUT_TEX_ARG(slut_test_table), t, q[b + 2], q[b + 3], q[b + 4], q[b + 5]);
     if (mode == 1)
         return slut_near_light_hg_radiance(SLUT_TEX_ARG(slut_test_table), t, q[b + 2], q[b + 3], q[b + 4], n, e, l,
@@ -256,7 +253,18 @@ std::string hlsl_compute_source(bool hardware_filter) {
 }
 
 // An engine's fragment / pixel shader with both near-light snippets (the isotropic one for
-// grey media, the anisotropic one for the rest: its code included once), RGB (compile only).
+// grey media, the anisotropic one for the rest: its code included once), RGB (compile only);
+// what it shades written once for both languages.
+const char *kEngineBody = R"slsl(
+SLUT_FLOAT3 engine_radiance(SLUT_FLOAT3 world_pos, SLUT_FLOAT3 eye_pos, SLUT_FLOAT3 normal) {
+    SlutNearLightHgTable t = slut_near_light_hg_table(slut_near_light_table_e3(
+        slut_axis_make(1e-3, 20.0, 1.0, SLUT_WARP_LOGLIN, 96), slut_axis_make(-0.99, 1.0, 0.0, SLUT_WARP_SQRT1P, 80),
+        slut_axis_make(0.0, 1e3, 1e-6, SLUT_WARP_LOG1P, 64)), phase_g);
+    return slut_near_light_hg_radiance_rgb(SLUT_TEX_ARG(near_table), t, sigma_s, sigma_a, intensity, normal,
+                                           normalize(eye_pos - world_pos), light_pos - world_pos, 1e30, 1.33, true);
+}
+)slsl";
+
 std::string glsl_fragment_source(bool es) {
     const std::string lang = es ? "essl" : "glsl";
     std::string s = es ? "#version 300 es\n" : "#version 330\n";
@@ -264,36 +272,16 @@ std::string glsl_fragment_source(bool es) {
     s += "uniform sampler3D near_table;\nuniform vec3 light_pos;\nuniform vec3 sigma_s;\nuniform vec3 sigma_a;\n"
          "uniform float intensity;\nuniform float phase_g;\nin vec3 world_pos;\nin vec3 eye_pos;\nin vec3 normal;\n"
          "out vec4 colour;\n";
-    s += R"glsl(
-void main() {
-    SlutNearLightHgTable t = slut_near_light_hg_table(slut_near_light_table_e3(
-        slut_axis_make(1e-3, 20.0, 1.0, SLUT_WARP_LOGLIN, 96), slut_axis_make(-0.99, 1.0, 0.0, SLUT_WARP_SQRT1P, 80),
-        slut_axis_make(0.0, 1e3, 1e-6, SLUT_WARP_LOG1P, 64)), phase_g);
-    vec3 L = slut_near_light_hg_radiance_rgb(near_table, t, sigma_s, sigma_a, intensity, normal,
-                                             normalize(eye_pos - world_pos), light_pos - world_pos, 1e30, 1.33, true);
-    colour = vec4(L, 1.0);
-}
-)glsl";
-    return s;
+    return s + kEngineBody + "void main() { colour = vec4(engine_radiance(world_pos, eye_pos, normal), 1.0); }\n";
 }
 
 std::string hlsl_pixel_source() {
     std::string s = "Texture3D<float> near_table : register(t0);\nSamplerState near_table_sampler : register(s0);\n"
                     "cbuffer Slab : register(b0) { float3 light_pos; float3 sigma_s; float3 sigma_a; float intensity; "
                     "float phase_g; };\n";
-    s += snippet("hlsl") + read_text(kShaderDir + "scatterlut_nearlight.hlsl");
-    s += R"hlsl(
-float4 main(float3 world_pos : TEXCOORD0, float3 eye_pos : TEXCOORD1, float3 normal : NORMAL) : SV_Target {
-    SlutNearLightHgTable t = slut_near_light_hg_table(slut_near_light_table_e3(
-        slut_axis_make(1e-3, 20.0, 1.0, SLUT_WARP_LOGLIN, 96), slut_axis_make(-0.99, 1.0, 0.0, SLUT_WARP_SQRT1P, 80),
-        slut_axis_make(0.0, 1e3, 1e-6, SLUT_WARP_LOG1P, 64)), phase_g);
-    float3 L = slut_near_light_hg_radiance_rgb(near_table, near_table_sampler, t, sigma_s, sigma_a, intensity, normal,
-                                               normalize(eye_pos - world_pos), light_pos - world_pos, 1e30, 1.33,
-                                               true);
-    return float4(L, 1.0);
-}
-)hlsl";
-    return s;
+    s += snippet("hlsl") + read_text(kShaderDir + "scatterlut_nearlight.hlsl") + kEngineBody;
+    return s + "float4 main(float3 world_pos : TEXCOORD0, float3 eye_pos : TEXCOORD1, float3 normal : NORMAL) : "
+               "SV_Target {\n    return float4(engine_radiance(world_pos, eye_pos, normal), 1.0);\n}\n";
 }
 
 // ---------------------------------------------------------------------- comparisons
@@ -402,22 +390,9 @@ TEST(NearLightHgShaderQueries, CoverEveryEntryPoint) {
 
 TEST(NearLightHgShaderGlslang, GlslEsslAndHlslCompile) {
     if (kGlslang.empty()) SLUT_SKIP_OR_FAIL("glslangValidator was not found at configure time (Debian: glslang-tools)");
-    for (bool hw : {false, true}) {
-        SCOPED_TRACE(hw ? "SLUT_NEARLIGHT_HARDWARE_FILTER" : "texel-fetch path");
-        const std::string tag = hw ? "_hw" : "";
-        EXPECT_EQ(glslang("nlhg_compute" + tag + ".comp", glsl_compute_source(hw), ""), "");
-        EXPECT_EQ(glslang("nlhg_vk_compute" + tag + ".comp", glsl_compute_source(hw),
-                          "-V -o " + quoted(scratch_dir() + "/nlhg_vk_compute" + tag + ".spv")),
-                  "");
-        EXPECT_EQ(glslang("nlhg_compute" + tag + ".hlsl", hlsl_compute_source(hw),
-                          "-D -V -e main -S comp -o " + quoted(scratch_dir() + "/nlhg_compute_hlsl" + tag + ".spv")),
-                  "");
-    }
-    EXPECT_EQ(glslang("nlhg_fragment.frag", glsl_fragment_source(false), ""), "");
-    EXPECT_EQ(glslang("nlhg_fragment_es.frag", glsl_fragment_source(true), ""), "");
-    EXPECT_EQ(glslang("nlhg_pixel.hlsl", hlsl_pixel_source(),
-                      "-D -V -e main -S frag -o " + quoted(scratch_dir() + "/nlhg_pixel.spv")),
-              "");
+    expect_compute_shaders_compile("nlhg", [](bool hw) { return glsl_compute_source(hw); },
+                                   [](bool hw) { return hlsl_compute_source(hw); });
+    expect_engine_shaders_compile("nlhg", glsl_fragment_source(false), glsl_fragment_source(true), hlsl_pixel_source());
 }
 
 // ----------------------------------------------------------------------------- GPU
