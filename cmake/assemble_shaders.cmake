@@ -10,7 +10,11 @@
 # Usage: cmake -DLANG=glsl|hlsl|essl -DNAME=airlight -DSRC_DIR=tables/shaders/src
 #              -DKERNELS_DIR=kernels
 #              -DHEADERS="slut_compat.h|slut_axes.h|slut_airlight.h|slut_nearlight_closed.h|..."
-#              -DOUT=file -P assemble_shaders.cmake
+#              -DOUT=file [-DBASE=nearlight] -P assemble_shaders.cmake
+# BASE: another snippet whose code this one builds on (the anisotropic near light on the
+# isotropic one): its code comes first. Every snippet's code sits in a language-neutral guard
+# SLUT_<NAME>_CODE, so that a shader may include a snippet and the one built on it, in either
+# order.
 cmake_policy(VERSION 3.20)
 foreach(var LANG NAME SRC_DIR KERNELS_DIR HEADERS OUT)
   if(NOT DEFINED ${var})
@@ -145,14 +149,26 @@ endif()
 file(READ "${SRC_DIR}/prelude.${LANG}" prelude)
 file(READ "${SRC_DIR}/common.slsl" common)
 string(REPLACE "@SLUT_C_HEADERS@" "${shared}" common "${common}")
-file(READ "${SRC_DIR}/${NAME}.slsl" body)
-string(FIND "${body}" "@SLUT_PRELUDE@" at)
-if(at EQUAL -1)
-  message(FATAL_ERROR "assemble_shaders.cmake: ${NAME}.slsl has no @SLUT_PRELUDE@ line")
+# A snippet's documentation (before its @SLUT_PRELUDE@ line) and its code (after it), the
+# code in the guard SLUT_<NAME>_CODE.
+function(slut_read_snippet name doc_var code_var)
+  file(READ "${SRC_DIR}/${name}.slsl" body)
+  string(FIND "${body}" "@SLUT_PRELUDE@" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "assemble_shaders.cmake: ${name}.slsl has no @SLUT_PRELUDE@ line")
+  endif()
+  string(SUBSTRING "${body}" 0 ${at} doc)
+  math(EXPR after "${at} + 14")
+  string(SUBSTRING "${body}" ${after} -1 code)
+  string(TOUPPER "SLUT_${name}_CODE" code_guard)
+  set(${doc_var} "${doc}" PARENT_SCOPE)
+  set(${code_var} "#ifndef ${code_guard}\n#define ${code_guard}\n${code}#endif // ${code_guard}\n" PARENT_SCOPE)
+endfunction()
+slut_read_snippet(${NAME} doc code)
+if(DEFINED BASE AND NOT BASE STREQUAL "")
+  slut_read_snippet(${BASE} base_doc base_code)
+  set(code "\n// ---- tables/shaders/src/${BASE}.slsl: the snippet this one builds on\n${base_code}${code}")
 endif()
-string(SUBSTRING "${body}" 0 ${at} doc)
-math(EXPR after "${at} + 14")
-string(SUBSTRING "${body}" ${after} -1 code)
 string(REPLACE "@LANG@" "${lang_name}" doc "${doc}")
 string(TOUPPER "SCATTERLUT_${NAME}_${LANG}" guard)
 

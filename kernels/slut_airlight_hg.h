@@ -228,37 +228,78 @@ SLUT_FN void slut_hg_series_pow(double p0, double p1, double p2, double alpha, i
 }
 
 /* K_g(û, τ̂, ε̂, ∞) for large û by Watson's lemma: with k_g(τ̂ + z) = Σ_n k_n z^n,
- *   K_g ~ Σ_n k_n n!/û^{n+1},
- * k_n from the series of (ε̂² + (τ̂ + z)²)^{1/2} and Q(z)^{−3/2} (both quadratics in z: the
- * recurrence above) and their product. Asymptotic: the terms shrink like n/(û·ρ) with
- * ρ = |τ̂ + i b̂| the distance to the nearest singularity (slut_hg_air_integral), so the sum
- * stops at its smallest term (≤ SLUT_HG_SERIES_TERMS), which is its error. For g → 1 and
- * w → π/2 (τ̂ → 0) ρ → (1 − g)/(1 + g): the forward peak needs û ≫ n(1 + g)/(1 − g). */
-SLUT_FN double slut_hg_air_integral_large_u(double u, double tau, double eps, double g) {
+ *   K_g ~ Σ_n k_n n!/û^{n+1}.
+ * Asymptotic: the terms shrink like n/(û·ρ) with ρ = |τ̂ + i b̂| the distance to the nearest
+ * singularity (slut_hg_air_integral), so the sum stops at its smallest term
+ * (≤ SLUT_HG_SERIES_TERMS), which is its error. For g → 1 and w → π/2 (τ̂ → 0)
+ * ρ → (1 − g)/(1 + g): the forward peak needs û ≫ n(1 + g)/(1 − g); at g = 0.95, w = π/2 − 0.006
+ * and û = 64 (ûρ = 1.7) the smallest term is the sum's own size and the sum is off by 130 %,
+ * in double as in float (measured: docs/SHADERS.md) — slut_hg_gs_beyond_u_max falls back to
+ * the quadrature there.
+ *
+ * Written so that nothing over- or underflows in float: in s = z/ρ, with
+ *   ε̂² + (τ̂ + ρs)² = R0·(1 + (2τ̂ρ/R0) s + (ρ²/R0) s²),          R0 = ε̂² + τ̂² ≥ ρ²,
+ *   (1 − g)²ε̂² + (1 + g)²(τ̂ + ρs)² = Q0·(1 + (2(1 + g)²τ̂ρ/Q0) s + ((1 + g)²ρ²/Q0) s²),
+ *   Q0 = (1 − g)²ε̂² + (1 + g)²τ̂² ≥ (1 + g)²ρ²,
+ * every coefficient of the two quadratics lies in [0, 2], so the Taylor coefficients of
+ * their powers (slut_hg_series_pow) grow at most like 3^n, and
+ *   K_g ~ (1 − g²)·√R0/Q0^{3/2}·ρ·Σ_n a_n n!/(ûρ)^{n+1}
+ * (a_n those of the product): the factor n!/(ûρ)^{n+1} near the smallest term is of order 1.
+ * (The series in z itself had coefficients ~ ρ^{−n} and factors ~ û^{−n}: in float they
+ * overflowed and underflowed, ∞·0, for a sharp peak.) Where τ̂ → 0 the odd terms vanish, so
+ * each term is compared with the one two places back: the sum stops where the terms begin to
+ * grow or stop being numbers, or where two terms in a row are below SLUT_SERIES_NEGLIGIBLE of
+ * the sum. error_bound: the larger of the first term left out and the last one taken (the
+ * even and the odd terms are two series, each stopped at most one term before its smallest;
+ * +∞ if a term was not a number; 0 where two negligible terms ended the sum) — the error of
+ * the sum, to within a factor of a few. */
+SLUT_STRUCT_BEGIN(slut_hg_series_result)
+    double sum;         /* K_g                                                 */
+    double error_bound; /* |the first term left out|: the sum's error, roughly */
+SLUT_STRUCT_END(slut_hg_series_result);
+
+SLUT_FN slut_hg_series_result slut_hg_air_series_large_u(double u, double tau, double eps, double g) {
     double r2c[SLUT_HG_SERIES_TERMS], qc[SLUT_HG_SERIES_TERMS];
     double gm = 1.0 - g, gp = 1.0 + g;
-    slut_hg_series_pow(eps * eps + tau * tau, 2.0 * tau, 1.0, 0.5, SLUT_HG_SERIES_TERMS, r2c);
-    slut_hg_series_pow(gm * gm * eps * eps + gp * gp * tau * tau, 2.0 * gp * gp * tau, gp * gp, -1.5,
-                       SLUT_HG_SERIES_TERMS, qc);
-    /* factor = n!/û^{n+1}. Where τ̂ → 0 (w → π/2) the odd terms vanish, so each term is
-     * compared with the one two places back: the sum stops where the terms begin to grow, or
-     * stop being numbers (in float the coefficients of a sharp peak overflow while n!/û^{n+1}
-     * underflows: ∞·0). */
-    double sum = 0.0, factor = 1.0 / u, before_last = SLUT_HUGE_VAL, last = SLUT_HUGE_VAL;
+    double b_hat = eps * fmin(1.0, gm / gp);
+    double rho = sqrt(tau * tau + b_hat * b_hat);
+    double R0 = eps * eps + tau * tau;
+    double Q0 = gm * gm * eps * eps + gp * gp * tau * tau;
+    slut_hg_series_pow(1.0, 2.0 * tau * rho / R0, rho * rho / R0, 0.5, SLUT_HG_SERIES_TERMS, r2c);
+    slut_hg_series_pow(1.0, 2.0 * gp * gp * tau * rho / Q0, gp * gp * rho * rho / Q0, -1.5, SLUT_HG_SERIES_TERMS, qc);
+    double x = u * rho;
+    double scale = gm * gp * sqrt(R0) / (Q0 * sqrt(Q0)) * rho;
+    slut_hg_series_result res;
+    res.sum = 0.0;
+    res.error_bound = 0.0;
+    double factor = 1.0 / x, before_last = SLUT_HUGE_VAL, last = SLUT_HUGE_VAL;
     for (int n = 0; n < SLUT_HG_SERIES_TERMS; ++n) {
-        double kn = 0.0;
-        for (int j = 0; j <= n; ++j) kn += r2c[j] * qc[n - j];
-        double term = gm * gp * kn * factor;
-        factor *= SLUT_DOUBLE(n + 1) / u;
-        if (!(fabs(term) < before_last)) break;
-        sum += term;
+        double an = 0.0;
+        for (int j = 0; j <= n; ++j) an += r2c[j] * qc[n - j];
+        double term = scale * an * factor;
+        factor *= SLUT_DOUBLE(n + 1) / x;
+        if (!(fabs(term) < before_last)) {
+            res.error_bound = (fabs(term) <= SLUT_REAL_MAX) ? fmax(fabs(term), last) : SLUT_HUGE_VAL;
+            return res;
+        }
+        res.sum += term;
+        if (n > 0 && fabs(term) <= SLUT_SERIES_NEGLIGIBLE * fabs(res.sum) &&
+            last <= SLUT_SERIES_NEGLIGIBLE * fabs(res.sum))
+            return res;
         before_last = last;
         last = fabs(term);
+        res.error_bound = fmax(last, before_last); /* out of terms: the last two taken */
     }
-    return sum;
+    return res;
 }
 
-/* G̃_g(u, w) for large u (Watson's lemma above); g = 0 hands to slut_gs_large_u. */
+SLUT_FN double slut_hg_air_integral_large_u(double u, double tau, double eps, double g) {
+    return slut_hg_air_series_large_u(u, tau, eps, g).sum;
+}
+
+/* G̃_g(u, w) for large u (Watson's lemma above, whatever its accuracy: the generator measures
+ * from which u on it holds a table's target, host/src/generate_airlight.cpp); g = 0 hands to
+ * slut_gs_large_u. */
 SLUT_FN double slut_hg_gs_large_u_general(double u, double w, double g) {
     slut_hg_tail_scale t = slut_hg_tail_scaling_of(w);
     return t.inv_lambda * slut_hg_air_integral_large_u(u / t.inv_lambda, t.tau_hat, t.eps_hat, g) / w;
@@ -266,6 +307,23 @@ SLUT_FN double slut_hg_gs_large_u_general(double u, double w, double g) {
 SLUT_FN double slut_hg_gs_large_u(double u, double w, double g) {
     if (g == 0.0) return slut_gs_large_u(u, w);
     return slut_hg_gs_large_u_general(u, w, g);
+}
+
+/* G̃_g(u, w) beyond a table's u_max, what the samplers (C++ and GPU) use there: Watson's
+ * series where its error bound is within SLUT_HG_SERIES_ACCEPT of its sum (1e-13 in double,
+ * 1e-6 in float: kernels/slut_compat.h), else the quadrature slut_hg_air_integral (û ρ small:
+ * the forward peak of g → 1 near w = π/2, a table whose u_max was set below the series'
+ * onset; at large û the quadrature needs ~8 panels, e^{−ûz} confining it to z ≲ 40/û).
+ * Never negative; g = 0 hands to slut_gs_large_u (the isotropic table's, unchanged). */
+SLUT_FN double slut_hg_gs_beyond_u_max(double u, double w, double g) {
+    if (g == 0.0) return slut_gs_large_u(u, w);
+    slut_hg_tail_scale t = slut_hg_tail_scaling_of(w);
+    double uh = u / t.inv_lambda;
+    slut_hg_series_result s = slut_hg_air_series_large_u(uh, t.tau_hat, t.eps_hat, g);
+    double K = s.sum;
+    if (!(s.sum > 0.0) || !(s.error_bound <= SLUT_HG_SERIES_ACCEPT * s.sum))
+        K = slut_hg_air_integral(uh, t.tau_hat, t.eps_hat, SLUT_HUGE_VAL, g, 1.0);
+    return t.inv_lambda * K / w;
 }
 
 /* ------------------------------------------------------------ exact radiance */

@@ -83,6 +83,7 @@
 #  define SLUT_CF_CONVERGED 1e-7
 #  define SLUT_SERIES_NEGLIGIBLE 1e-9
 #  define SLUT_REMAINDER_NEGLIGIBLE 1e-8
+#  define SLUT_HG_SERIES_ACCEPT 1e-6
 #  define SLUT_EXPINT_CF_MAX_ITER 100
 #  define SLUT_EXPINT_SERIES_MAX_TERMS 30
 #  define SLUT_EXPINT_LEADING_ABOVE 1e6
@@ -180,6 +181,7 @@ SLUT_FN void slut_check_failed(const char *file, int line, const char *condition
 #define SLUT_CF_CONVERGED 1e-16       /* a continued fraction's step factor this close to 1: converged */
 #define SLUT_SERIES_NEGLIGIBLE 1e-18  /* a series term this small against a sum of order 1: done */
 #define SLUT_REMAINDER_NEGLIGIBLE 1e-17 /* a quadrature's remainder bound this small against its sum: done */
+#define SLUT_HG_SERIES_ACCEPT 1e-13     /* an asymptotic series whose error bound is this small against its sum: used */
 #define SLUT_EXPINT_CF_MAX_ITER 500       /* e^a E_n(a): continued-fraction steps */
 #define SLUT_EXPINT_SERIES_MAX_TERMS 40   /* e^a E_1(a), a < 1: power-series terms */
 #define SLUT_EXPINT_LEADING_ABOVE 1e300   /* e^a E_n(a) = 1/(a + n) above this (relative error n/a²) */

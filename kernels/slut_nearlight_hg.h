@@ -21,7 +21,10 @@
  * r = 0 is the airlight with D = l, cos γ = −g and the same g_hg (cos θ = (D cos γ − x)/d
  * there): σ_t N_g(σ_t D, −cos γ, 0, σ_t s) = (4π/(σ_s I0))·L_airlight,g.
  *
- * C99/OpenCL C compatible, double precision; used by the runtime library and the tests.
+ * C99/OpenCL C compatible, double precision; used by the runtime library and the tests; and
+ * whole, in float, by the anisotropic near-light GPU snippet (docs/SHADERS.md): the phase at a
+ * point and the tables' divisors are in the shared subset of kernels/slut_compat.h, the
+ * quadratures (pointer arguments, double only) sit in `#ifndef SLUT_SHADER` blocks.
  */
 #ifndef SLUT_NEARLIGHT_HG_H
 #define SLUT_NEARLIGHT_HG_H
@@ -48,6 +51,7 @@ SLUT_FN double slut_hg_nl_psi(double phase_g, double dl, double eta, double sg2)
     return slut_hg_psi_half(phase_g, s2, c2);
 }
 
+#ifndef SLUT_SHADER /* the quadrature: the generator's, the runtime's and the tests' (double only) */
 /* E_g at n ascending slab depths in one march (the 4-D table's S nodes at one (T, g, r); one
  * depth: the march of slut_hg_nl_E below, whose rules it follows):
  * S_over_T[k] = S_k/T, 0 < S_0 ≤ … ≤ S_{n−1} (the last may be > 1e300: thick). The panels of
@@ -163,6 +167,8 @@ SLUT_FN double slut_hg_nl_E(double T, double g, double r, double S_over_T, doubl
     return E;
 }
 
+#endif /* !SLUT_SHADER */
+
 /* The divisor D(T, g) of the anisotropic near-light tables (kernels/nearlight_Eg.cl stores
  * ln(E_g/D), the runtime multiplies by it). ψ0 = ψ(θ(0)), cos θ(0) = −g, the phase at the entry
  * point, carries E_g's sharp dependence on g near the phase's peak once the attenuation gathers
@@ -221,9 +227,10 @@ SLUT_FN double slut_hg_nl_slab_divisor(double phase_g, double T, double g, doubl
 /* The divisor of either table: slut_hg_nl_table_divisor for a thick one (S = +∞), the slab
  * divisor for finite S. */
 SLUT_FN double slut_hg_nl_divisor(double phase_g, double T, double g, double S) {
-    return (S > 1e300) ? slut_hg_nl_table_divisor(phase_g, T, g) : slut_hg_nl_slab_divisor(phase_g, T, g, S);
+    return (S > SLUT_INFINITE_ABOVE) ? slut_hg_nl_table_divisor(phase_g, T, g) : slut_hg_nl_slab_divisor(phase_g, T, g, S);
 }
 
+#ifndef SLUT_SHADER
 /* N_g = E_g·H (+∞ where H diverges: T = 0 with S > 0, or g = −1 with S ≥ T). */
 SLUT_FN double slut_hg_nl_N(double T, double g, double r, double S, double phase_g) {
     double H = slut_nl_H(T, g, S);
@@ -232,5 +239,6 @@ SLUT_FN double slut_hg_nl_N(double T, double g, double r, double S, double phase
     double S_over_T = (S > 1e300) ? SLUT_HUGE_VAL : S / T;
     return slut_hg_nl_E(T, g, r, S_over_T, phase_g, 1.0) * H;
 }
+#endif /* !SLUT_SHADER */
 
 #endif /* SLUT_NEARLIGHT_HG_H */

@@ -1,5 +1,6 @@
-// The GPU test harness shared by the shader tests (test_shaders.cpp: airlight,
-// test_shaders_nearlight.cpp: near light): tool runs (glslang, spirv-cross) in a scratch
+// The GPU test harness shared by the shader tests (tests/shaders/: the airlight and near-light
+// snippets, isotropic and Henyey-Greenstein; what the airlight tests share beyond this is
+// shaders/airlight_gpu_test.hpp, the near-light ones shaders/nearlight_gpu_test.hpp): tool runs (glslang, spirv-cross) in a scratch
 // directory, and one surfaceless EGL / OpenGL 4.3 core context (Mesa llvmpipe where there
 // is no GPU) that runs a compute shader over a buffer of queries with one R32F texture.
 #pragma once
@@ -136,6 +137,70 @@ inline std::string hlsl_compute_to_glsl(const std::string &tag, const std::strin
         return "";
     }
     return read_text(glsl);
+}
+
+// A compute shader around `snippet` that evaluates one query per invocation, in GLSL 4.30 or
+// HLSL: `body` defines float test_eval(int i) (written once for both languages with the
+// snippets' own prelude macros: SLUT_FLOAT3, SLUT_TEX_ARG(slut_test_table)); `params` the
+// fields of the uniform block (n_queries among them); `defines` goes first. Bindings: 0 the
+// table (a 2-D texture, or 3-D with three_d), 1 the queries q[], 2 the results r[], 3 the
+// parameters (std140).
+inline std::string glsl_compute_source(const std::string &snippet, const std::string &params,
+                                       const std::string &body, const std::string &defines, bool three_d) {
+    return "#version 430\n" + defines + "\nlayout(local_size_x = 64) in;\nlayout(binding = 0) uniform " +
+           (three_d ? "sampler3D" : "sampler2D") + R"glsl( slut_test_table;
+layout(std430, binding = 1) readonly buffer SlutTestQueries { float q[]; };
+layout(std430, binding = 2) writeonly buffer SlutTestResults { float r[]; };
+layout(std140, binding = 3) uniform SlutTestParams {
+)glsl" + params + "\n};\n" + snippet + body + R"glsl(
+void main() {
+    int i = int(gl_GlobalInvocationID.x);
+    if (i < n_queries) r[i] = test_eval(i);
+}
+)glsl";
+}
+
+inline std::string hlsl_compute_source(const std::string &snippet, const std::string &params,
+                                       const std::string &body, const std::string &defines, bool three_d) {
+    return defines + "\n[[vk::binding(0)]] " + (three_d ? "Texture3D" : "Texture2D") + R"hlsl(<float> slut_test_table;
+[[vk::binding(4)]] SamplerState slut_test_table_sampler;
+[[vk::binding(1)]] StructuredBuffer<float> q;
+[[vk::binding(2)]] RWStructuredBuffer<float> r;
+[[vk::binding(3)]] cbuffer SlutTestParams {
+)hlsl" + params + "\n};\n" + snippet + body + R"hlsl(
+[numthreads(64, 1, 1)]
+void main(uint3 id : SV_DispatchThreadID) {
+    int i = int(id.x);
+    if (i < n_queries) r[i] = test_eval(i);
+}
+)hlsl";
+}
+
+// glslang on a snippet's compute shaders (glsl_source / hlsl_source of the hardware-filter flag),
+// with and without the hardware filter: GLSL for OpenGL and for Vulkan (SPIR-V), HLSL to SPIR-V.
+// Files named by `tag` in the scratch directory.
+template <class GlslSource, class HlslSource>
+void expect_compute_shaders_compile(const std::string &tag, const GlslSource &glsl_source,
+                                    const HlslSource &hlsl_source) {
+    for (bool hw : {false, true}) {
+        SCOPED_TRACE(hw ? "hardware filter" : "texel-fetch path");
+        const std::string name = tag + (hw ? "_compute_hw" : "_compute");
+        EXPECT_EQ(glslang(name + ".comp", glsl_source(hw), ""), "");
+        EXPECT_EQ(glslang(name + "_vk.comp", glsl_source(hw), "-V -o " + quoted(scratch_dir() + "/" + name + "_vk.spv")), "");
+        EXPECT_EQ(glslang(name + ".hlsl", hlsl_source(hw),
+                          "-D -V -e main -S comp -o " + quoted(scratch_dir() + "/" + name + "_hlsl.spv")),
+                  "");
+    }
+}
+
+// glslang on an engine's shaders around a snippet (compile checks): a GLSL fragment shader, a
+// GLSL ES 3.00 one and an HLSL pixel shader (to SPIR-V). Files named by `tag`.
+inline void expect_engine_shaders_compile(const std::string &tag, const std::string &glsl_fragment,
+                                          const std::string &essl_fragment, const std::string &hlsl_pixel) {
+    EXPECT_EQ(glslang(tag + "_fragment.frag", glsl_fragment, ""), "");
+    EXPECT_EQ(glslang(tag + "_fragment_es.frag", essl_fragment, ""), "");
+    EXPECT_EQ(glslang(tag + "_pixel.hlsl", hlsl_pixel, "-D -V -e main -S frag -o " + quoted(scratch_dir() + "/" + tag + "_pixel.spv")),
+              "");
 }
 
 // relative error; infinities must match, NaN never does, 0 only by 0.
@@ -288,5 +353,20 @@ void main() {
 }
 
 #endif // SLUT_HAVE_EGL
+
+// The fixture of the tests that run shaders: skips (or fails, SCATTERLUT_REQUIRE_SHADER_TESTS)
+// without a GPU context; records and prints the renderer.
+class GpuTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+#if SLUT_HAVE_EGL
+        if (!gpu().ok) SLUT_SKIP_OR_FAIL("no GPU context: " + gpu().why_not);
+        RecordProperty("renderer", gpu().renderer);
+        std::printf("[ renderer ] %s\n", gpu().renderer.c_str());
+#else
+        SLUT_SKIP_OR_FAIL("built without EGL/OpenGL headers and libraries (Debian: libegl-dev, libgl-dev)");
+#endif
+    }
+};
 
 } // namespace gpu_harness

@@ -71,7 +71,7 @@ AirlightHgTable::AirlightHgTable(Table table) : table_(std::move(table)) {
 
 double AirlightHgTable::scaled_tail(double u, double w) const {
     if (w < w_min_) return slut_hg_gs_small_w(w, u * (std::cos(w) / std::sin(w)), g_);
-    if (u > u_max_) return slut_hg_gs_large_u(u, w, g_);
+    if (u > u_max_) return slut_hg_gs_beyond_u_max(u, w, g_);
     const double params[2] = {u, w};
     return sample(table_, cache_, params, 0);
 }

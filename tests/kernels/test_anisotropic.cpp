@@ -309,6 +309,26 @@ TEST(AnisotropicAirlight, SmallWAndLargeUFormsMatchQuadrature) {
     RecordProperty("worst_rel_err", std::to_string(std::max(worst_w, worst_u)));
 }
 
+// Beyond a table's u_max (what AirlightHgTable and the GPU snippet use): the series where it
+// has converged, the quadrature elsewhere — also at the forward peak of g -> 1 near w = pi/2 and
+// u just above a hand-set u_max, where the series alone is off by 130 % (g = 0.95, u = 64).
+TEST(AnisotropicAirlight, BeyondUMaxMatchesQuadrature) {
+    double worst = 0, worst_series_alone = 0;
+    for (double g : {-0.99, -0.5, 0.3, 0.85, 0.95, 0.99})
+        for (double u : {20.0, 64.03, 100.0, 300.0, 1000.0, 3000.0, 1e5, 1e8})
+            for (double d : {0.0, 1e-7, 1e-5, 1e-3, 3e-3, 6e-3, 1e-2, 3e-2, 0.1, 0.5, 1.0, 1.4, 1.569}) {
+                const double w = SLUT_PIO2_HI - d;
+                const double got = slut_hg_gs_beyond_u_max(u, w, g), want = slut_hg_gs_quadrature(u, w, g, 3.0);
+                worst = std::max(worst, rel(got, want));
+                worst_series_alone = std::max(worst_series_alone, rel(slut_hg_gs_large_u(u, w, g), want));
+                EXPECT_LT(rel(got, want), 1e-13) << "g " << g << " u " << u << " w " << w;
+            }
+    EXPECT_EQ(slut_hg_gs_beyond_u_max(70.0, 1.2, 0.0), slut_gs_large_u(70.0, 1.2)); // g = 0: the isotropic form
+    std::printf("beyond u_max: worst %.2e (the series alone: %.2e)\n", worst, worst_series_alone);
+    EXPECT_GT(worst_series_alone, 0.5); // the region where the series fails is in the sweep
+    RecordProperty("worst_rel_err", std::to_string(worst));
+}
+
 // ---------------------------------------------------------------- exact radiance
 
 TEST(AnisotropicAirlight, ExactMatchesBoostQuadratureOfThePhysicalIntegral) {

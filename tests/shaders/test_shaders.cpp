@@ -20,20 +20,13 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <random>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "scatterlut/airlight.hpp"
 #include "scatterlut/table.hpp"
@@ -43,12 +36,11 @@ extern "C" {
 #include "slut_axes.h"
 }
 
-#include "gpu_harness.hpp"
+#include "airlight_gpu_test.hpp"
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-using namespace gpu_harness;
+using namespace airlight_gpu_test;
 
 const std::string &glsl_snippet() {
     static const std::string text = read_text(kShaderDir + "scatterlut_airlight.glsl");
@@ -63,85 +55,23 @@ const std::string &hlsl_snippet() {
 
 // ------------------------------------------------------------------------ the table
 
-constexpr int kCountU = 128, kCountW = 64;
-constexpr double kUMax = 64.0, kUScale = 1e-7, kWMin = 1e-3;
-
-// The airlight table as docs/AIRLIGHT.md defines it (the layout of
-// host/src/generate_airlight.cpp), integrated here with the shared quadrature and rounded
-// to f32 as a file round trip would: u LOG1P scale 1e-7 on [0, 64], w ASINH_COT on
-// [1e-3, pi/2], channel ln_Gs.
-scatterlut::Table make_table() {
-    scatterlut::Table t;
-    t.kind = scatterlut::kKindAirlightF;
-    t.quantity_version = scatterlut::kAirlightFQuantityVersion;
-    scatterlut::Axis u;
-    u.name = "u";
-    u.meaning = "optical distance sigma_t*D*sin(gamma)";
-    u.map.min = 0.0;
-    u.map.max = kUMax;
-    u.map.scale = kUScale;
-    u.map.warp = SLUT_WARP_LOG1P;
-    u.map.count = kCountU;
-    scatterlut::Axis w;
-    w.name = "w";
-    w.meaning = "pi/2 - v (rad)";
-    w.map.min = kWMin;
-    w.map.max = SLUT_PIO2_HI;
-    w.map.scale = 0.0;
-    w.map.warp = SLUT_WARP_ASINH_COT;
-    w.map.count = kCountW;
-    t.axes = {u, w};
-    scatterlut::Channel c;
-    c.name = "ln_Gs";
-    c.meaning = "ln of the scaled tail";
-    c.encoding = scatterlut::Encoding::Log;
-    t.channels = {c};
-    t.storage = scatterlut::Storage::F32;
-    t.values.resize(static_cast<size_t>(kCountU) * kCountW);
-    for (int j = 0; j < kCountW; ++j) {
-        const double wj = slut_axis_node(&t.axes[1].map, j);
-        for (int i = 0; i < kCountU; ++i) {
-            const double ui = slut_axis_node(&t.axes[0].map, i);
-            const float stored = static_cast<float>(std::log(slut_gs_quadrature(ui, wj, 1.0)));
-            t.values[static_cast<size_t>(j) * kCountU + i] = stored;
-        }
-    }
-    t.check_consistent();
-    return t;
-}
-
+// The airlight table as docs/AIRLIGHT.md defines it, laid out by the generator (u LOG1P scale
+// 1e-7 on [0, 64], w ASINH_COT on [1e-3, pi/2], channel ln_Gs; airlight_gpu_test.hpp).
 const scatterlut::AirlightTable &airlight_table() {
-    static const scatterlut::AirlightTable table(make_table());
+    static const scatterlut::AirlightTable table(airlight_test_table(0.0));
     return table;
 }
 
 // ---------------------------------------------------------------------- the queries
 
-// One GPU query: 16 floats. mode 0: Gs(u, w); 1: radiance(sigma_s, sigma_a, I0, D,
-// sin gamma, cos gamma, s); 2: radiance from points (viewer, dir, light, s, sigma_s,
-// sigma_a, I0).
+// One GPU query (airlight_gpu_test::Query, 16 floats). mode 0: Gs(u, w); 1: radiance(sigma_s,
+// sigma_a, I0, D, sin gamma, cos gamma, s); 2: radiance from points (viewer, dir, light, s,
+// sigma_s, sigma_a, I0).
 enum Mode { kScaledTail = 0, kRadiance = 1, kPoints = 2 };
-constexpr int kQueryFloats = 16;
 
-struct Query {
-    std::array<float, kQueryFloats> gpu{}; // what the shader gets
-    double reference = 0;                  // the C++ sampler on the same (rounded) inputs
-    std::string label;                     // for messages
-};
-
-double log_uniform(std::mt19937_64 &rng, double lo, double hi) {
-    std::uniform_real_distribution<double> d(std::log(lo), std::log(hi));
-    return std::exp(d(rng));
-}
-
-std::string describe(const std::array<float, kQueryFloats> &q) {
-    std::ostringstream s;
-    s.precision(9);
-    s << "mode " << q[0] << " [";
-    const int n = q[0] == kScaledTail ? 3 : q[0] == kRadiance ? 8 : 14;
-    for (int k = 1; k < n; ++k) s << (k > 1 ? ", " : "") << q[k];
-    s << "]";
-    return s.str();
+// A query's inputs for messages.
+std::string describe_query(const std::array<float, kQueryFloats> &q) {
+    return describe(q, q[0] == kScaledTail ? 3 : q[0] == kRadiance ? 8 : 14);
 }
 
 std::vector<Query> make_queries() {
@@ -155,16 +85,7 @@ std::vector<Query> make_queries() {
     const slut_axis &au = table.table().axes[0].map;
     const slut_axis &aw = table.table().axes[1].map;
     for (int i = 0; i < 2000; ++i) {
-        const double r1 = unit(rng), r2 = unit(rng);
-        double u = slut_param_from_unit(&au, unit(rng));
-        double w = slut_param_from_unit(&aw, unit(rng));
-        if (r1 < 0.08) u = 0.0;
-        else if (r1 < 0.2) u = log_uniform(rng, kUMax, 1e4);
-        else if (r1 < 0.25) u = kUMax * (1.0 + 2e-3 * (unit(rng) - 0.5));
-        else if (r1 < 0.3) u = log_uniform(rng, 1e-12, 1e-6);
-        if (r2 < 0.12) w = log_uniform(rng, 1e-7, kWMin);
-        else if (r2 < 0.17) w = kPi / 2 - log_uniform(rng, 1e-7, 1e-2);
-        else if (r2 < 0.2) w = kWMin * (1.0 + 2e-3 * (unit(rng) - 0.5));
+        const auto [u, w] = random_scaled_tail_point(rng, au, aw);
         Query q;
         q.gpu[0] = kScaledTail;
         q.gpu[1] = static_cast<float>(u);
@@ -174,118 +95,47 @@ std::vector<Query> make_queries() {
         out.push_back(q);
     }
 
-    // Radiance over the acceptance domain of docs/AIRLIGHT.md and beyond it: sigma_t D in
-    // [1e-4, 13.8] (and up to 85, where u passes u_max; e^{-87} is float's smallest normal), D in [0.01, 100], s/D in
-    // [1e-5, 100] or infinite, gamma uniform, near 0, near pi and exactly 0 and pi.
+    // Radiance over the acceptance domain of docs/AIRLIGHT.md and beyond it
+    // (airlight_gpu_test::random_geometry).
     for (int i = 0; i < 3000; ++i) {
-        const double r_tau = unit(rng), r_gamma = unit(rng), r_s = unit(rng);
-        const bool large_u = r_tau >= 0.92; // u = sigma_t D sin gamma > u_max = 64
-        const double tau = r_tau < 0.8 ? log_uniform(rng, 1e-4, 13.8)
-                           : large_u   ? log_uniform(rng, 70.0, 85.0)
-                                       : log_uniform(rng, 13.8, 85.0);
-        const double D = log_uniform(rng, 0.01, 100.0);
-        const double sigma_t = tau / D;
-        const double albedo = 0.05 + 0.95 * unit(rng);
-        // e^{-sigma_t D} ~ 1e-37 at the top: a bright light keeps the result in float's range.
-        const double I0 = log_uniform(rng, 1.0, 1e4) * (tau > 13.8 ? 1e12 : 1.0);
-        double gamma = kPi * unit(rng);
-        if (r_gamma < 0.2) gamma = log_uniform(rng, 1e-7, 0.1);
-        else if (r_gamma < 0.4) gamma = kPi - log_uniform(rng, 1e-7, 0.1);
-        else if (r_gamma < 0.43) gamma = 0.0;
-        else if (r_gamma < 0.46) gamma = kPi;
-        if (large_u) gamma = 1.2 + (kPi - 2.4) * unit(rng);
-        const double s = r_s < 0.15 ? std::numeric_limits<double>::infinity()
-                                    : D * log_uniform(rng, 1e-5, 100.0);
         Query q;
+        double sigma_t = 0, I0 = 0;
+        random_geometry(rng, &q, &sigma_t, &I0);
+        const double albedo = 0.05 + 0.95 * unit(rng);
         q.gpu[0] = kRadiance;
         q.gpu[1] = static_cast<float>(albedo * sigma_t);
         q.gpu[2] = static_cast<float>((1.0 - albedo) * sigma_t);
         q.gpu[3] = static_cast<float>(I0);
-        q.gpu[4] = static_cast<float>(D);
-        q.gpu[5] = gamma == kPi ? 0.0f : static_cast<float>(std::sin(gamma));
-        q.gpu[6] = gamma == kPi ? -1.0f : static_cast<float>(std::cos(gamma));
-        q.gpu[7] = static_cast<float>(s);
-        scatterlut::AirlightQuery cq;
-        cq.sigma_s_per_m = q.gpu[1];
-        cq.sigma_a_per_m = q.gpu[2];
-        cq.intensity_W_per_sr = q.gpu[3];
-        cq.distance_m = q.gpu[4];
-        cq.gamma_rad = std::atan2(static_cast<double>(q.gpu[5]), static_cast<double>(q.gpu[6]));
-        cq.length_m = q.gpu[7];
-        q.reference = table.radiance(cq);
+        q.reference = table.radiance(cpp_query(&q.gpu[1]));
         q.label = "radiance";
         out.push_back(q);
     }
 
-    // Degenerate inputs: zero radiance (sigma_s = 0, I0 = 0, s = 0) and the ray through
-    // the light (gamma = 0, s >= D: +inf), and gamma = 0 short of the light (finite).
-    const float inf = std::numeric_limits<float>::infinity();
-    const std::array<std::array<float, 7>, 7> degenerate = {{{0.0f, 0.1f, 1.0f, 2.0f, 0.5f, 0.8f, 3.0f},
-                                                           {0.1f, 0.1f, 0.0f, 2.0f, 0.5f, 0.8f, 3.0f},
-                                                           {0.1f, 0.1f, 1.0f, 2.0f, 0.5f, 0.8f, 0.0f},
-                                                           {0.1f, 0.1f, 1.0f, 2.0f, 0.0f, 1.0f, 2.0f},
-                                                           {0.1f, 0.1f, 1.0f, 2.0f, 0.0f, 1.0f, inf},
-                                                           {0.1f, 0.1f, 1.0f, 2.0f, 0.0f, 1.0f, 1.5f},
-                                                           {0.1f, 0.1f, 1.0f, 2.0f, 0.0f, -1.0f, inf}}};
-    for (const auto &d : degenerate) {
+    // Degenerate inputs (airlight_gpu_test::degenerate_radiance_inputs).
+    for (const auto &d : degenerate_radiance_inputs()) {
         Query q;
         q.gpu[0] = kRadiance;
         std::copy(d.begin(), d.end(), q.gpu.begin() + 1);
-        scatterlut::AirlightQuery cq;
-        cq.sigma_s_per_m = d[0];
-        cq.sigma_a_per_m = d[1];
-        cq.intensity_W_per_sr = d[2];
-        cq.distance_m = d[3];
-        cq.gamma_rad = std::atan2(static_cast<double>(d[4]), static_cast<double>(d[5]));
-        cq.length_m = d[6];
-        q.reference = table.radiance(cq);
+        q.reference = table.radiance(cpp_query(d.data()));
         q.label = "radiance";
         out.push_back(q);
     }
 
-    // Radiance from points: viewer within D of the origin (so that float positions keep
-    // D's precision), gamma in [0.1, pi - 0.1] (a float cross product of nearly parallel
-    // vectors loses sin gamma's relative precision; that is the caller's input, not the
-    // snippet's error) and a few exactly collinear rays both ways.
+    // Radiance from points (airlight_gpu_test::random_points): gamma in [0.1, pi - 0.1] (a float
+    // cross product of nearly parallel vectors loses sin gamma's relative precision; that is the
+    // caller's input, not the snippet's error) and a few exactly collinear rays both ways.
     for (int i = 0; i < 600; ++i) {
         const double D = log_uniform(rng, 0.01, 100.0);
         const double tau = log_uniform(rng, 1e-4, 13.8);
         const double sigma_t = tau / D, albedo = 0.05 + 0.95 * unit(rng);
-        std::normal_distribution<double> normal;
-        double viewer[3], l_dir[3], e1[3], e2[3];
-        for (int k = 0; k < 3; ++k) viewer[k] = D * (2.0 * unit(rng) - 1.0);
         const double r = unit(rng);
         const bool collinear = r < 0.1;
-        double n2 = 0;
-        for (int k = 0; k < 3; ++k) {
-            l_dir[k] = normal(rng);
-            n2 += l_dir[k] * l_dir[k];
-        }
-        for (int k = 0; k < 3; ++k) l_dir[k] /= std::sqrt(n2);
-        // e1 ⟂ l_dir, then the view direction at angle gamma from l_dir.
-        const double any[3] = {std::fabs(l_dir[0]) < 0.9 ? 1.0 : 0.0, std::fabs(l_dir[0]) < 0.9 ? 0.0 : 1.0, 0.0};
-        e2[0] = l_dir[1] * any[2] - l_dir[2] * any[1];
-        e2[1] = l_dir[2] * any[0] - l_dir[0] * any[2];
-        e2[2] = l_dir[0] * any[1] - l_dir[1] * any[0];
-        const double ne2 = std::sqrt(e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]);
-        for (int k = 0; k < 3; ++k) e1[k] = e2[k] / ne2;
         const double gamma = r < 0.05 ? 0.0 : r < 0.1 ? kPi : 0.1 + (kPi - 0.2) * unit(rng);
-        double dir[3];
-        for (int k = 0; k < 3; ++k) dir[k] = std::cos(gamma) * l_dir[k] + std::sin(gamma) * e1[k];
         const double s = unit(rng) < 0.15 ? std::numeric_limits<double>::infinity()
                                            : D * log_uniform(rng, 1e-5, 100.0);
         Query q;
         q.gpu[0] = kPoints;
-        // Collinear rays (gamma exactly 0 or pi): positions on a 2^-10 grid, so that
-        // light - viewer is exact in float and in double, and the direction is ±(light - viewer).
-        const double grid = collinear ? 1024.0 : 0.0;
-        for (int k = 0; k < 3; ++k) {
-            const double v = viewer[k], l = viewer[k] + D * l_dir[k];
-            q.gpu[1 + k] = static_cast<float>(collinear ? std::round(v * grid) / grid : v);
-            q.gpu[7 + k] = static_cast<float>(collinear ? std::round(l * grid) / grid : l);
-            q.gpu[4 + k] = collinear ? (r < 0.05 ? 1.0f : -1.0f) * (q.gpu[7 + k] - q.gpu[1 + k])
-                                     : static_cast<float>(dir[k]);
-        }
+        random_points(rng, D, gamma, collinear, &q);
         q.gpu[10] = static_cast<float>(s);
         q.gpu[11] = static_cast<float>(albedo * sigma_t);
         q.gpu[12] = static_cast<float>((1.0 - albedo) * sigma_t);
@@ -337,83 +187,33 @@ Branches radiance_branches(const Query &q) {
 
 // ------------------------------------------------------------------ shader wrappers
 
-// Declarations and main() of the compute shader that evaluates the queries. The GLSL and
-// HLSL versions bind the same resources at the same binding numbers: 0 the table,
-// 1 the queries, 2 the results, 3 the parameters (std140: u_max, u_scale, u_count,
-// w_min, w_count, n_queries).
-std::string glsl_compute_source(bool hardware_filter) {
-    std::string s = "#version 430\n";
-    if (hardware_filter) s += "#define SLUT_AIRLIGHT_HARDWARE_FILTER\n";
-    s += R"glsl(
-layout(local_size_x = 64) in;
-layout(binding = 0) uniform sampler2D slut_test_table;
-layout(std430, binding = 1) readonly buffer SlutTestQueries { float q[]; };
-layout(std430, binding = 2) writeonly buffer SlutTestResults { float r[]; };
-layout(std140, binding = 3) uniform SlutTestParams {
-    float u_max; float u_scale; int u_count; float w_min; int w_count; int n_queries;
-};
-)glsl";
-    s += glsl_snippet();
-    s += R"glsl(
-void main() {
-    int i = int(gl_GlobalInvocationID.x);
-    if (i >= n_queries) return;
+// What each invocation of the compute shader evaluates (airlight_gpu_test's wrapper), once for
+// both languages; the parameters (std140): u_max, u_scale, u_count, w_min, w_count, n_queries.
+const char *kParams = "    float u_max; float u_scale; int u_count; float w_min; int w_count; int n_queries;";
+const char *kTestBody = R"slsl(
+float test_eval(int i) {
     SlutAirlightTable t = slut_airlight_table(u_max, u_scale, u_count, w_min, w_count);
     int b = 16 * i;
     int mode = int(q[b]);
-    float result;
-    if (mode == 0) {
-        result = slut_airlight_scaled_tail_uw(slut_test_table, t, q[b + 1], q[b + 2]);
-    } else if (mode == 1) {
-        result = slut_airlight_radiance(slut_test_table, t, q[b + 1], q[b + 2], q[b + 3],
-                                        q[b + 4], q[b + 5], q[b + 6], q[b + 7]);
-    } else {
-        result = slut_airlight_radiance_points(slut_test_table, t,
-            vec3(q[b + 1], q[b + 2], q[b + 3]), vec3(q[b + 4], q[b + 5], q[b + 6]),
-            vec3(q[b + 7], q[b + 8], q[b + 9]), q[b + 10], q[b + 11], q[b + 12], q[b + 13]);
-    }
-    r[i] = result;
+    if (mode == 0) return slut_airlight_scaled_tail_uw(SLUT_TEX_ARG(slut_test_table), t, q[b + 1], q[b + 2]);
+    if (mode == 1)
+        return slut_airlight_radiance(SLUT_TEX_ARG(slut_test_table), t, q[b + 1], q[b + 2], q[b + 3], q[b + 4],
+                                      q[b + 5], q[b + 6], q[b + 7]);
+    return slut_airlight_radiance_points(SLUT_TEX_ARG(slut_test_table), t, SLUT_FLOAT3(q[b + 1], q[b + 2], q[b + 3]),
+                                         SLUT_FLOAT3(q[b + 4], q[b + 5], q[b + 6]),
+                                         SLUT_FLOAT3(q[b + 7], q[b + 8], q[b + 9]), q[b + 10], q[b + 11], q[b + 12],
+                                         q[b + 13]);
 }
-)glsl";
-    return s;
-}
+)slsl";
 
-std::string hlsl_compute_source(bool hardware_filter) {
-    std::string s;
-    if (hardware_filter) s += "#define SLUT_AIRLIGHT_HARDWARE_FILTER\n";
-    s += R"hlsl(
-[[vk::binding(0)]] Texture2D<float> slut_test_table;
-[[vk::binding(4)]] SamplerState slut_test_sampler;
-[[vk::binding(1)]] StructuredBuffer<float> q;
-[[vk::binding(2)]] RWStructuredBuffer<float> r;
-[[vk::binding(3)]] cbuffer SlutTestParams {
-    float u_max; float u_scale; int u_count; float w_min; int w_count; int n_queries;
-};
-)hlsl";
-    s += hlsl_snippet();
-    s += R"hlsl(
-[numthreads(64, 1, 1)]
-void main(uint3 id : SV_DispatchThreadID) {
-    int i = int(id.x);
-    if (i >= n_queries) return;
-    SlutAirlightTable t = slut_airlight_table(u_max, u_scale, u_count, w_min, w_count);
-    int b = 16 * i;
-    int mode = int(q[b]);
-    float result;
-    if (mode == 0) {
-        result = slut_airlight_scaled_tail_uw(slut_test_table, slut_test_sampler, t, q[b + 1], q[b + 2]);
-    } else if (mode == 1) {
-        result = slut_airlight_radiance(slut_test_table, slut_test_sampler, t, q[b + 1], q[b + 2],
-                                        q[b + 3], q[b + 4], q[b + 5], q[b + 6], q[b + 7]);
-    } else {
-        result = slut_airlight_radiance_points(slut_test_table, slut_test_sampler, t,
-            float3(q[b + 1], q[b + 2], q[b + 3]), float3(q[b + 4], q[b + 5], q[b + 6]),
-            float3(q[b + 7], q[b + 8], q[b + 9]), q[b + 10], q[b + 11], q[b + 12], q[b + 13]);
-    }
-    r[i] = result;
+std::string filter_define(bool hardware_filter) {
+    return hardware_filter ? "#define SLUT_AIRLIGHT_HARDWARE_FILTER\n" : "";
 }
-)hlsl";
-    return s;
+std::string glsl_compute_source(bool hardware_filter) {
+    return airlight_gpu_test::glsl_compute_source(glsl_snippet(), kParams, kTestBody, filter_define(hardware_filter));
+}
+std::string hlsl_compute_source(bool hardware_filter) {
+    return airlight_gpu_test::hlsl_compute_source(hlsl_snippet(), kParams, kTestBody, filter_define(hardware_filter));
 }
 
 // A fragment / pixel shader using the snippet as an engine would (compile checks only).
@@ -509,19 +309,14 @@ double optical_distance(const Query &q) {
 // Every query through a compute shader built from glsl/hlsl_compute_source (or its
 // spirv-cross translation), on the test table.
 std::vector<float> run_on_gpu(const std::string &source, std::string *error) {
-    const scatterlut::Table &table = airlight_table().table();
-    const std::vector<float> texels(table.values.begin(), table.values.end());
-    const std::vector<Query> &qs = queries();
-    std::vector<float> packed;
-    for (const Query &q : qs) packed.insert(packed.end(), q.gpu.begin(), q.gpu.end());
     struct Params {
         float u_max, u_scale;
         int32_t u_count;
         float w_min;
         int32_t w_count, n_queries, pad[2];
     } params{static_cast<float>(kUMax), static_cast<float>(kUScale), kCountU, static_cast<float>(kWMin),
-             kCountW, static_cast<int32_t>(qs.size()), {0, 0}};
-    return run_compute(source, texels, kCountU, kCountW, 0, packed, qs.size(), &params, sizeof params, error);
+             kCountW, static_cast<int32_t>(queries().size()), {0, 0}};
+    return run_queries(source, airlight_table().table(), queries(), params, error);
 }
 
 // The largest change of the stored ln Gs across one cell (u and w steps added): a filter
@@ -551,10 +346,10 @@ void expect_agreement(const std::vector<float> &got, const std::string &run, dou
         const Stats st = stats_for(got, label, tolerance);
         const Query &worst = queries()[st.worst];
         std::printf("[ %s ] %-8s n=%zu  max %.3g  p99 %.3g  median %.3g  (worst: %s -> gpu %.9g, C++ %.9g)\n",
-                    run.c_str(), label.c_str(), st.count, st.max, st.p99, st.median, describe(worst.gpu).c_str(),
+                    run.c_str(), label.c_str(), st.count, st.max, st.p99, st.median, describe_query(worst.gpu).c_str(),
                     static_cast<double>(got[st.worst]), worst.reference);
         const Query &w = queries()[st.worst_ratio];
-        EXPECT_LE(st.max_ratio, 1.0) << run << " " << label << ": query " << describe(w.gpu) << " gave "
+        EXPECT_LE(st.max_ratio, 1.0) << run << " " << label << ": query " << describe_query(w.gpu) << " gave "
                                      << got[st.worst_ratio] << ", the C++ sampler " << w.reference
                                      << ": relative error " << rel_err(got[st.worst_ratio], w.reference)
                                      << " > tolerance " << tolerance(w);
@@ -698,18 +493,7 @@ TEST(ShaderGlslang, HlslCompilesAsComputeAndPixelShaders) {
 
 // ----------------------------------------------------------------------------- GPU
 
-class GpuShaders : public ::testing::Test {
-protected:
-    void SetUp() override {
-#if SLUT_HAVE_EGL
-        if (!gpu().ok) SLUT_SKIP_OR_FAIL("no GPU context: " + gpu().why_not);
-        RecordProperty("renderer", gpu().renderer);
-        std::printf("[ renderer ] %s\n", gpu().renderer.c_str());
-#else
-        SLUT_SKIP_OR_FAIL("built without EGL/OpenGL headers and libraries (Debian: libegl-dev, libgl-dev)");
-#endif
-    }
-};
+class GpuShaders : public GpuTest {};
 
 TEST_F(GpuShaders, GlslMatchesTheCppSampler) {
 #if SLUT_HAVE_EGL

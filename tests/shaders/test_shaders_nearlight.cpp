@@ -31,30 +31,22 @@
 
 #include <gtest/gtest.h>
 
-#include "gpu_harness.hpp"
+#include "nearlight_gpu_test.hpp"
 #include "scatterlut/io.hpp"
 #include "scatterlut/nearlight.hpp"
 #include "scatterlut/table.hpp"
 
-extern "C" {
-#include "slut_axes.h"
-}
-
 using namespace gpu_harness;
+using namespace nearlight_gpu_test;
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
 // ------------------------------------------------------------------------ the tables
 
-// A table as the GPU sees it: its values rounded to float (the texture), and the C++
-// NearLightTable on exactly those values (the reference).
-struct GpuTable {
-    scatterlut::Table rounded;
-    std::vector<float> texels;
+// A table as the GPU sees it (nearlight_gpu_test::Texture: the values rounded to float, the
+// texture), and the C++ NearLightTable on exactly those values (the reference).
+struct GpuTable : Texture {
     std::unique_ptr<scatterlut::NearLightTable> cpp;
-    int layers() const { return rounded.axes.size() == 4 ? rounded.axes[3].map.count : 1; }
 };
 
 struct Tables {
@@ -62,25 +54,10 @@ struct Tables {
     GpuTable e3, e4;
 };
 
-// The texture as docs/SHADERS.md packs it: E3 the payload as it stands (nT x ng x nr);
-// E4 its S layers stacked along the height (nT x ng*nS x nr, texel (iT, ig + ng*iS, ir)),
-// what one glTexSubImage3D per layer at y offset ng*iS uploads.
 GpuTable make_gpu_table(scatterlut::Table t) {
     GpuTable g;
-    for (double &v : t.values) v = static_cast<float>(v);
-    g.texels.assign(t.values.begin(), t.values.end());
-    if (t.axes.size() == 4) {
-        const size_t nT = t.axes[0].map.count, ng = t.axes[1].map.count, nr = t.axes[2].map.count,
-                     nS = t.axes[3].map.count;
-        for (size_t iS = 0; iS < nS; ++iS)
-            for (size_t ir = 0; ir < nr; ++ir)
-                for (size_t ig = 0; ig < ng; ++ig)
-                    for (size_t iT = 0; iT < nT; ++iT)
-                        g.texels[iT + nT * ((ig + ng * iS) + ng * nS * ir)] =
-                            static_cast<float>(t.values[iT + nT * (ig + ng * (ir + nr * iS))]);
-    }
-    g.rounded = t;
-    g.cpp = std::make_unique<scatterlut::NearLightTable>(std::move(t));
+    static_cast<Texture &>(g) = make_texture(std::move(t));
+    g.cpp = std::make_unique<scatterlut::NearLightTable>(g.rounded);
     return g;
 }
 
@@ -111,69 +88,10 @@ const Tables &tables() {
 
 // ---------------------------------------------------------------------- the queries
 
-// One GPU query: 20 floats. mode 0: E(T, g, r, S) [2..5]; modes 1-3: radiance from the
-// table / thin closed form / distant closed form of (sigma_s, sigma_a, I0 [2..4],
-// normal [5..7], eye_dir [8..10], light_rel [11..13], length [14], eta [15], fresnel [16]).
+// One GPU query (nearlight_gpu_test::Query, 20 floats). mode 0: E(T, g, r, S) [2..5]; modes
+// 1-3: radiance from the table / thin closed form / distant closed form of the geometry in
+// gpu[2..16] (nearlight_gpu_test::random_geometry).
 enum Mode { kE = 0, kRadiance = 1, kThin = 2, kDistant = 3 };
-constexpr int kQueryFloats = 20;
-
-struct Query {
-    std::array<float, kQueryFloats> gpu{};
-    double reference = 0;
-    double ln_E = 0;   // ln of the table's E at the query (scales the tolerance)
-    double conditioning = 0; // 1/mu_l + 1/mu_e of a geometry query (scales the tolerance)
-    std::string label; // category for the statistics
-};
-
-double log_uniform(std::mt19937_64 &rng, double lo, double hi) {
-    return lo * std::pow(hi / lo, std::uniform_real_distribution<double>(0.0, 1.0)(rng));
-}
-
-std::array<double, 3> random_unit(std::mt19937_64 &rng) {
-    std::normal_distribution<double> n(0.0, 1.0);
-    for (;;) {
-        const std::array<double, 3> v = {n(rng), n(rng), n(rng)};
-        const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-        if (len > 1e-3) return {v[0] / len, v[1] / len, v[2] / len};
-    }
-}
-
-// A unit vector at cosine mu to n (random azimuth).
-std::array<double, 3> at_cosine(std::mt19937_64 &rng, const std::array<double, 3> &n, double mu) {
-    std::array<double, 3> t;
-    do {
-        const std::array<double, 3> v = random_unit(rng);
-        const double d = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
-        t = {v[0] - d * n[0], v[1] - d * n[1], v[2] - d * n[2]};
-    } while (t[0] * t[0] + t[1] * t[1] + t[2] * t[2] < 1e-6);
-    const double tl = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-    const double s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
-    return {mu * n[0] + s * t[0] / tl, mu * n[1] + s * t[1] / tl, mu * n[2] + s * t[2] / tl};
-}
-
-// The float the GPU gets, and the double unit vector the C++ checks demand (|v| = 1 to
-// 1e-9): the float vector renormalised in double (a change of ~6e-8, inside the noise).
-std::array<double, 3> unit_of_floats(const float *f) {
-    const double len = std::sqrt(double(f[0]) * f[0] + double(f[1]) * f[1] + double(f[2]) * f[2]);
-    return {f[0] / len, f[1] / len, f[2] / len};
-}
-
-scatterlut::NearLightQuery cpp_query(const Query &q) {
-    scatterlut::NearLightQuery c;
-    c.sigma_s_per_m = q.gpu[2];
-    c.sigma_a_per_m = q.gpu[3];
-    c.intensity_W_per_sr = q.gpu[4];
-    const auto n = unit_of_floats(&q.gpu[5]), e = unit_of_floats(&q.gpu[8]);
-    for (int k = 0; k < 3; ++k) {
-        c.normal[k] = n[k];
-        c.eye_dir[k] = e[k];
-        c.light_rel_m[k] = q.gpu[11 + k];
-    }
-    c.length_m = std::isinf(q.gpu[14]) ? kInf : q.gpu[14];
-    c.eta = q.gpu[15];
-    c.fresnel = q.gpu[16] != 0.0f;
-    return c;
-}
 
 // E queries inside the table (unit coordinates uniform per axis, 10 % at an axis end,
 // r = 0 for 10 %) and outside it (one coordinate beyond its axis, clamped by the shader).
@@ -218,40 +136,16 @@ void add_E_queries(const GpuTable &t, bool thick, std::mt19937_64 &rng, std::vec
     }
 }
 
-// Radiance queries: random normal, eye at mu_e in [0.05, 1], light at mu_l in [1e-4, 1]
-// (r from 1e-4 to 20) with T log-uniform over the table's T axis, sigma_t in [0.05, 50]/m,
-// albedo in [0.05, 1], eta = 1 or in [0.75, 1.6], Fresnel on half of the refracted ones;
-// S over the S axis (E4) or infinite (E3). Kept where the C++ table covers the point.
+// Radiance queries: random geometries (nearlight_gpu_test::random_geometry) with T over the
+// table's T axis and S over its S axis (E4) or infinite (E3), kept where the C++ table covers
+// the point.
 void add_radiance_queries(const GpuTable &t, bool thick, std::mt19937_64 &rng, std::vector<Query> &out) {
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
     const slut_axis &aT = t.rounded.axes[0].map;
     int made = 0;
     for (int attempt = 0; attempt < 20000 && made < 1500; ++attempt) {
-        const auto n = random_unit(rng);
-        const auto eye = at_cosine(rng, n, 0.05 + 0.95 * unit(rng));
-        const auto ldir = at_cosine(rng, n, log_uniform(rng, 1e-4, 1.0));
-        const double mu_e = eye[0] * n[0] + eye[1] * n[1] + eye[2] * n[2];
-        const double mu_l = ldir[0] * n[0] + ldir[1] * n[1] + ldir[2] * n[2];
-        const double sigma_t = log_uniform(rng, 0.05, 50.0), albedo = 0.05 + 0.95 * unit(rng);
-        const double T = log_uniform(rng, std::max(aT.min, 1e-3), aT.max), l = T / sigma_t;
-        double length = kInf;
-        if (!thick) length = log_uniform(rng, t.rounded.axes[3].map.min, t.rounded.axes[3].map.max) / sigma_t;
-        const double r_eta = unit(rng);
-        const double eta = r_eta < 0.5 ? 1.0 : r_eta < 0.6 ? 0.75 + 0.25 * unit(rng) : 1.0 + 0.6 * unit(rng);
-        Query q;
+        Query q = random_geometry(rng, aT.min, aT.max, thick ? 0.0 : t.rounded.axes[3].map.min,
+                                  thick ? 0.0 : t.rounded.axes[3].map.max);
         q.gpu[0] = kRadiance;
-        q.gpu[2] = static_cast<float>(albedo * sigma_t);
-        q.gpu[3] = static_cast<float>((1.0 - albedo) * sigma_t);
-        q.gpu[4] = static_cast<float>(log_uniform(rng, 0.1, 1e3));
-        for (int k = 0; k < 3; ++k) {
-            q.gpu[5 + k] = static_cast<float>(n[k]);
-            q.gpu[8 + k] = static_cast<float>(eye[k]);
-            q.gpu[11 + k] = static_cast<float>(l * ldir[k]);
-        }
-        q.gpu[14] = static_cast<float>(length);
-        q.gpu[15] = static_cast<float>(eta);
-        q.gpu[16] = (eta != 1.0 && unit(rng) < 0.5) ? 1.0f : 0.0f;
-        q.conditioning = 1.0 / mu_l + 1.0 / mu_e;
         const scatterlut::NearLightQuery c = cpp_query(q);
         const scatterlut::NearLightParams p = scatterlut::near_light_params(c);
         if (p.light_below || !t.cpp->covers(p.T, p.g, p.r, p.S)) continue;
@@ -273,23 +167,13 @@ void add_radiance_queries(const GpuTable &t, bool thick, std::mt19937_64 &rng, s
             out.push_back(distant);
         }
     }
-    // Zero limits on the last radiance query: the light strictly below the plane
-    // (light_rel = -l n), sigma_s = 0, I0 = 0, length 0.
+    // Zero limits on the last radiance query (nearlight_gpu_test::zero_limit).
     size_t last = out.size();
     while (last > 0 && out[last - 1].gpu[0] != kRadiance) --last;
     if (last == 0) return;
     for (int k = 0; k < 4; ++k) {
-        Query z = out[last - 1];
-        if (k == 0) {
-            const float *v = &z.gpu[11];
-            const double l = std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
-            for (int c = 0; c < 3; ++c) z.gpu[11 + c] = static_cast<float>(-l * z.gpu[5 + c]);
-        }
-        if (k == 1) z.gpu[2] = 0.0f;
-        if (k == 2) z.gpu[4] = 0.0f;
-        if (k == 3) z.gpu[14] = 0.0f;
+        Query z = zero_limit(out[last - 1], k);
         z.reference = t.cpp->radiance(cpp_query(z));
-        z.label = "zero";
         out.push_back(z);
     }
 }
@@ -326,19 +210,11 @@ std::string hlsl_snippet() { return read_text(kShaderDir + "scatterlut_nearlight
 // own prelude macros (SLUT_FLOAT3, SLUT_TEX_ARG): the test wrapper cannot drift between
 // GLSL and HLSL either.
 const char *kTestBody = R"slsl(
-SlutAxis test_axis(int k) {
-    return slut_axis_make(axis_f[k].x, axis_f[k].y, axis_f[k].z, axis_i[k].x, axis_i[k].y);
-}
 float test_eval(int i) {
-    SlutNearLightTable t;
-    if (layers == 1) t = slut_near_light_table_e3(test_axis(0), test_axis(1), test_axis(2));
-    else t = slut_near_light_table_e4(test_axis(0), test_axis(1), test_axis(2), test_axis(3));
+    SlutNearLightTable t = test_table();
     int b = 20 * i;
     int mode = int(q[b]);
-    SLUT_FLOAT3 n = SLUT_FLOAT3(q[b + 5], q[b + 6], q[b + 7]);
-    SLUT_FLOAT3 e = SLUT_FLOAT3(q[b + 8], q[b + 9], q[b + 10]);
-    SLUT_FLOAT3 l = SLUT_FLOAT3(q[b + 11], q[b + 12], q[b + 13]);
-    bool fresnel = q[b + 16] != 0.0;
+    TEST_GEOMETRY(b);
     if (mode == 0) return slut_near_light_E(SLUT_TEX_ARG(slut_test_table), t, q[b + 2], q[b + 3], q[b + 4], q[b + 5]);
     if (mode == 1)
         return slut_near_light_radiance(SLUT_TEX_ARG(slut_test_table), t, q[b + 2], q[b + 3], q[b + 4], n, e, l,
@@ -350,48 +226,13 @@ float test_eval(int i) {
 )slsl";
 
 std::string glsl_compute_source(bool hardware_filter) {
-    std::string s = "#version 430\n";
-    if (hardware_filter) s += "#define SLUT_NEARLIGHT_HARDWARE_FILTER\n";
-    s += R"glsl(
-layout(local_size_x = 64) in;
-layout(binding = 0) uniform sampler3D slut_test_table;
-layout(std430, binding = 1) readonly buffer SlutTestQueries { float q[]; };
-layout(std430, binding = 2) writeonly buffer SlutTestResults { float res[]; };
-layout(std140, binding = 3) uniform SlutTestParams {
-    vec4 axis_f[4]; ivec4 axis_i[4]; int layers; int n_queries;
-};
-)glsl";
-    s += glsl_snippet() + kTestBody;
-    s += R"glsl(
-void main() {
-    int i = int(gl_GlobalInvocationID.x);
-    if (i < n_queries) res[i] = test_eval(i);
-}
-)glsl";
-    return s;
+    return nearlight_gpu_test::glsl_compute_source(glsl_snippet(), kTestBody,
+                                                   hardware_filter ? "#define SLUT_NEARLIGHT_HARDWARE_FILTER\n" : "");
 }
 
 std::string hlsl_compute_source(bool hardware_filter) {
-    std::string s;
-    if (hardware_filter) s += "#define SLUT_NEARLIGHT_HARDWARE_FILTER\n";
-    s += R"hlsl(
-[[vk::binding(0)]] Texture3D<float> slut_test_table;
-[[vk::binding(4)]] SamplerState slut_test_table_sampler;
-[[vk::binding(1)]] StructuredBuffer<float> q;
-[[vk::binding(2)]] RWStructuredBuffer<float> res;
-[[vk::binding(3)]] cbuffer SlutTestParams {
-    float4 axis_f[4]; int4 axis_i[4]; int layers; int n_queries;
-};
-)hlsl";
-    s += hlsl_snippet() + kTestBody;
-    s += R"hlsl(
-[numthreads(64, 1, 1)]
-void main(uint3 id : SV_DispatchThreadID) {
-    int i = int(id.x);
-    if (i < n_queries) res[i] = test_eval(i);
-}
-)hlsl";
-    return s;
+    return nearlight_gpu_test::hlsl_compute_source(hlsl_snippet(), kTestBody,
+                                                   hardware_filter ? "#define SLUT_NEARLIGHT_HARDWARE_FILTER\n" : "");
 }
 
 // A fragment / pixel shader using both snippets together, as an engine would (compile
@@ -526,28 +367,7 @@ void expect_agreement(const std::vector<float> &got, bool thick, const std::stri
 
 #if SLUT_HAVE_EGL
 std::vector<float> run_on_gpu(const std::string &source, bool thick, std::string *error) {
-    const GpuTable &t = thick ? tables().e3 : tables().e4;
-    const Run &r = queries(thick);
-    std::vector<float> packed;
-    for (const Query &q : r.queries) packed.insert(packed.end(), q.gpu.begin(), q.gpu.end());
-    struct Params {
-        float axis_f[4][4];
-        int32_t axis_i[4][4];
-        int32_t layers, n_queries, pad[2];
-    } params{};
-    for (size_t a = 0; a < t.rounded.axes.size(); ++a) {
-        const slut_axis &m = t.rounded.axes[a].map;
-        params.axis_f[a][0] = static_cast<float>(m.min);
-        params.axis_f[a][1] = static_cast<float>(m.max);
-        params.axis_f[a][2] = static_cast<float>(m.scale);
-        params.axis_i[a][0] = m.warp;
-        params.axis_i[a][1] = m.count;
-    }
-    params.layers = t.layers();
-    params.n_queries = static_cast<int32_t>(r.queries.size());
-    const auto &ax = t.rounded.axes;
-    return run_compute(source, t.texels, ax[0].map.count, ax[1].map.count * t.layers(), ax[2].map.count, packed,
-                       r.queries.size(), &params, sizeof params, error);
+    return run_queries(source, thick ? tables().e3 : tables().e4, queries(thick).queries, 0.0, error);
 }
 #endif
 
@@ -607,36 +427,19 @@ TEST(NearLightShaderSources, OneBodyFromTheCHeaders) {
 
 TEST(NearLightShaderGlslang, GlslAndHlslCompile) {
     if (kGlslang.empty()) SLUT_SKIP_OR_FAIL("glslangValidator was not found at configure time (Debian: glslang-tools)");
-    for (bool hw : {false, true}) {
-        SCOPED_TRACE(hw ? "SLUT_NEARLIGHT_HARDWARE_FILTER" : "texel-fetch path");
-        const std::string tag = hw ? "_hw" : "";
-        EXPECT_EQ(glslang("nl_compute" + tag + ".comp", glsl_compute_source(hw), ""), "");
-        EXPECT_EQ(glslang("nl_vk_compute" + tag + ".comp", glsl_compute_source(hw),
-                          "-V -o " + gpu_harness::quoted(scratch_dir() + "/nl_vk_compute" + tag + ".spv")),
-                  "");
-        EXPECT_EQ(glslang("nl_compute" + tag + ".hlsl", hlsl_compute_source(hw),
-                          "-D -V -e main -S comp -o " + gpu_harness::quoted(scratch_dir() + "/nl_compute_hlsl" + tag + ".spv")),
-                  "");
-    }
+    expect_compute_shaders_compile("nl", [](bool hw) { return glsl_compute_source(hw); },
+                                   [](bool hw) { return hlsl_compute_source(hw); });
     // Both snippets in one shader (the shared part once): GLSL 3.30, GLSL ES 3.00 and an
     // HLSL pixel shader.
-    EXPECT_EQ(glslang("nl_fragment.frag", glsl_fragment_source(false), ""), "");
-    EXPECT_EQ(glslang("nl_fragment_es.frag", glsl_fragment_source(true), ""), "");
-    EXPECT_EQ(glslang("nl_pixel.hlsl", hlsl_pixel_source(),
-                      "-D -V -e main -S frag -o " + gpu_harness::quoted(scratch_dir() + "/nl_pixel.spv")),
-              "");
+    expect_engine_shaders_compile("nl", glsl_fragment_source(false), glsl_fragment_source(true), hlsl_pixel_source());
 }
 
-class NearLightGpu : public ::testing::Test {
+class NearLightGpu : public GpuTest {
 protected:
     void SetUp() override {
-#if SLUT_HAVE_EGL
-        if (!gpu().ok) SLUT_SKIP_OR_FAIL("no GPU context: " + gpu().why_not);
+        GpuTest::SetUp();
+        if (IsSkipped() || HasFatalFailure()) return;
         ASSERT_EQ(tables().error, "") << "generating the default tables failed";
-        std::printf("[ renderer ] %s\n", gpu().renderer.c_str());
-#else
-        SLUT_SKIP_OR_FAIL("built without EGL/OpenGL headers and libraries (Debian: libegl-dev, libgl-dev)");
-#endif
     }
 };
 
