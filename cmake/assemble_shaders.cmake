@@ -144,8 +144,21 @@ endif()
 
 file(READ "${SRC_DIR}/prelude.${LANG}" prelude)
 file(READ "${SRC_DIR}/common.slsl" common)
-string(REPLACE "@SLUT_C_HEADERS@" "${shared}" common "${common}")
 file(READ "${SRC_DIR}/${NAME}.slsl" body)
+
+# No switch statement in what the GPU compiles: SwiftShader (Chromium's WebGL2 without a GPU)
+# took minutes of CPU to build a shader that inlines a switch several times (the warp switch,
+# nine times in the near-light snippet) and seconds with the same code as a chain of ifs
+# (bench/README.md, "Compile cost on SwiftShader"). Write such code as ifs.
+foreach(part IN ITEMS scanned_code common body)
+  string(REGEX MATCH "(^|[^A-Za-z0-9_])switch[ \t\n]*\\(" found "${${part}}")
+  if(found)
+    message(FATAL_ERROR "assemble_shaders.cmake: a switch statement in the code of ${NAME}.${LANG} (${header_list}, "
+                        "common.slsl or ${NAME}.slsl): write it as a chain of ifs (SwiftShader compiles an inlined "
+                        "switch for minutes; bench/README.md, \"Compile cost on SwiftShader\")")
+  endif()
+endforeach()
+string(REPLACE "@SLUT_C_HEADERS@" "${shared}" common "${common}")
 string(FIND "${body}" "@SLUT_PRELUDE@" at)
 if(at EQUAL -1)
   message(FATAL_ERROR "assemble_shaders.cmake: ${NAME}.slsl has no @SLUT_PRELUDE@ line")
