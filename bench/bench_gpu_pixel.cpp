@@ -5,10 +5,11 @@
 //   snippet_hw the same with SLUT_AIRLIGHT_HARDWARE_FILTER (one filtered fetch per sample),
 //   sun2005    Sun et al. 2005's two-fetch form A0·[F(A1, v_far) − F(A1, γ/2)] on a plain
 //              64 x 64 F(u, v) table (u in [0, 10], v in [0, π/2], linear axes, GL_LINEAR,
-//              clamped), as in NVIDIA's SDK 10 Rain sample; F from slut_F_quadrature,
-//   closed     the closed form engines use (Macklin 2010) times e^{−σ_t D}: GLSL written here
-//              from slut_airlight_no_extinction_attenuated (kernels/slut_airlight.h; not in a
-//              SLUT_SHADER region, so not in the snippet), with the builtin atan,
+//              clamped), as in NVIDIA's SDK 10 Rain sample; F from slut_F_quadrature
+//              (bench/shaders/sun2005.glsl),
+//   closed     the closed form engines use (Macklin 2010) times e^{−σ_t D}:
+//              slut_airlight_no_extinction_attenuated (kernels/slut_airlight.h) in float GLSL
+//              with the builtin atan (bench/shaders/closed_form.glsl),
 //   inputs     a pass that only reads the per-pixel inputs (the floor every method pays),
 // each rendering the same per-pixel geometries (read from a storage buffer) into an R32F
 // target. Rounds A B C … A B C … with the order rotated each round; per frame glDrawArrays +
@@ -36,6 +37,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "egl_context.hpp"
@@ -147,47 +149,6 @@ void main() {
 }
 )glsl";
 }
-
-const char *kClosedFormGlsl = R"glsl(
-// slut_airlight_no_extinction_attenuated (kernels/slut_airlight.h) in float:
-// sigma_s/(4pi) I0 (atan((s + b)/h) - atan(b/h))/h e^{-sigma_t D}, b = -D cos gamma, h = D sin gamma,
-// the angle as (s/den) atan(s h/den)/(s h/den), den = D (D - s cos gamma), while den > 0.
-float closed_form_attenuated(float ss, float sa, float i0, float dist, float sg, float cg, float len) {
-    if (!(ss > 0.0) || !(i0 > 0.0) || !(len > 0.0)) return 0.0;
-    float h = dist * max(sg, 0.0);
-    float den = dist * (dist - len * cg);
-    float angle_over_h;
-    if (den > 0.0) {
-        float x = len * h / den;
-        angle_over_h = ((x == 0.0) ? 1.0 : atan(x) / x) * (len / den);
-    } else {
-        if (!(h > 0.0)) return uintBitsToFloat(0x7F800000u);
-        angle_over_h = (den == 0.0) ? 1.5707963 / h : (3.14159265 - atan(len * h / -den)) / h;
-    }
-    return ss * 0.0795774715 * i0 * angle_over_h * exp(-(ss + sa) * dist);
-}
-)glsl";
-
-const char *kSunGlsl = R"glsl(
-// Sun et al. 2005: L = A0 [F(A1, pi/4 + atan((s - D cos g)/(D sin g))/2) - F(A1, g/2)],
-// A0 = sigma_s I0 e^{-sigma_t D cos g}/(2 pi D sin g), A1 = sigma_t D sin g; F from a plain
-// table (u in [0, f_u_max], v in [0, pi/2], linear, bilinear, clamped).
-layout(binding = 0) uniform sampler2D f_table;
-uniform float f_u_max;
-float sun_F(float u, float v) {
-    vec2 unit = clamp(vec2(u / f_u_max, v / 1.5707963), 0.0, 1.0);
-    vec2 size = vec2(textureSize(f_table, 0));
-    return textureLod(f_table, (unit * (size - 1.0) + 0.5) / size, 0.0).r;
-}
-float sun2005(float ss, float sa, float i0, float dist, float sg, float cg, float len) {
-    float st = ss + sa;
-    float a1 = st * dist * sg;
-    float a0 = ss * i0 * exp(-st * dist * cg) / (6.2831853 * dist * sg);
-    float v_far = 0.7853982 + 0.5 * atan((len - dist * cg) / (dist * sg));
-    float v_near = 0.5 * atan(sg, cg);
-    return a0 * (sun_F(a1, v_far) - sun_F(a1, v_near));
-}
-)glsl";
 
 struct Method {
     std::string name, what;
@@ -302,6 +263,16 @@ int main(int argc, char **argv) {
         std::fprintf(stderr, "scatterlut_gpu_bench: cannot read %s\n", snippet_path.c_str());
         return 1;
     }
+    // The baselines' GLSL, shared with examples/web/bench_airlight.mjs (bench/shaders/).
+    std::string closed_glsl, sun_glsl;
+    for (auto [text, name] : {std::pair{&closed_glsl, "closed_form.glsl"}, std::pair{&sun_glsl, "sun2005.glsl"}}) {
+        const std::string path = std::string(SLUT_BENCH_SHADER_DIR) + "/" + name;
+        *text = read_text(path);
+        if (text->empty()) {
+            std::fprintf(stderr, "scatterlut_gpu_bench: cannot read %s\n", path.c_str());
+            return 1;
+        }
+    }
     const std::string table_uniforms = "layout(binding = 0) uniform sampler2D ln_gs_table;\n"
                                        "uniform float u_max, u_scale, w_min;\nuniform int u_count, w_count;\n";
     const std::string snippet_call = "slut_airlight_radiance(ln_gs_table, slut_airlight_table(u_max, u_scale, "
@@ -323,8 +294,8 @@ int main(int argc, char **argv) {
         std::string fs = "#version 430\n";
         if (m.name == "snippet_hw") fs += "#define SLUT_AIRLIGHT_HARDWARE_FILTER\n";
         fs += kFragmentHead;
-        if (m.name == "closed") fs += kClosedFormGlsl + fragment_main("closed_form_attenuated(ss, sa, i0, dist, sg, cg, len)");
-        else if (m.name == "sun2005") fs += kSunGlsl + fragment_main("sun2005(ss, sa, i0, dist, sg, cg, len)");
+        if (m.name == "closed") fs += closed_glsl + fragment_main("closed_form_attenuated(ss, sa, i0, dist, sg, cg, len)");
+        else if (m.name == "sun2005") fs += sun_glsl + fragment_main("sun2005(ss, sa, i0, dist, sg, cg, len)");
         else if (m.name == "inputs") fs += fragment_main("ss + sa + i0 + dist + sg + cg + len");
         else fs += table_uniforms + (m.name == "compare" ? compare_text : snippet) + fragment_main(snippet_call);
         const std::string error = gpu_harness::build_program_stages(

@@ -148,11 +148,26 @@ endif()
 
 file(READ "${SRC_DIR}/prelude.${LANG}" prelude)
 file(READ "${SRC_DIR}/common.slsl" common)
+# No switch statement in what the GPU compiles: SwiftShader (Chromium's WebGL2 without a GPU)
+# took minutes of CPU to build a shader that inlines a switch several times (the warp switch,
+# nine times in the near-light snippet) and seconds with the same code as a chain of ifs
+# (bench/README.md, "Compile cost on SwiftShader"). Write such code as ifs.
+function(slut_refuse_switch text where)
+  string(REGEX MATCH "(^|[^A-Za-z0-9_])switch[ \t\n]*\\(" found "${text}")
+  if(found)
+    message(FATAL_ERROR "assemble_shaders.cmake: a switch statement in the code of ${NAME}.${LANG} (${where}): "
+                        "write it as a chain of ifs (SwiftShader compiles an inlined switch for minutes; "
+                        "bench/README.md, \"Compile cost on SwiftShader\")")
+  endif()
+endfunction()
+slut_refuse_switch("${scanned_code}" "${header_list}")
+slut_refuse_switch("${common}" "common.slsl")
 string(REPLACE "@SLUT_C_HEADERS@" "${shared}" common "${common}")
 # A snippet's documentation (before its @SLUT_PRELUDE@ line) and its code (after it), the
 # code in the guard SLUT_<NAME>_CODE.
 function(slut_read_snippet name doc_var code_var)
   file(READ "${SRC_DIR}/${name}.slsl" body)
+  slut_refuse_switch("${body}" "${name}.slsl")
   string(FIND "${body}" "@SLUT_PRELUDE@" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "assemble_shaders.cmake: ${name}.slsl has no @SLUT_PRELUDE@ line")

@@ -55,31 +55,36 @@
 #define SLUT_WARP_ASINH_COT_PEAK 7
 #define SLUT_WARP_COUNT 8
 
-/* Warp g(p). */
+/* Warp g(p). Written as a chain of ifs, not a switch, as is slut_warp_inverse: compiled as a
+ * shader (the near-light snippet inlines it nine times, three per axis) a switch on the warp
+ * id made SwiftShader's shader compile explode (three axis positions: 0.2 s with the ifs
+ * against more than a minute of CPU with the switch: bench/README.md, "Compile cost on
+ * SwiftShader"). The warps that share a form evaluate it once (the logarithm of LOG, LOGLIN
+ * and NL_QODDS; ASINH_COT's, which ASINH_COT_PEAK extends): SwiftShader runs every case for
+ * every pixel, masked, so the snippet pays for all of them (1.16x the web demo's frame
+ * before). The same operations either way. */
 SLUT_FN double slut_warp_forward(int warp, double p, double p_min, double scale) {
-    switch (warp) {
-    case SLUT_WARP_LOG: return log(p);
-    case SLUT_WARP_LOG1P: {
+    if (warp == SLUT_WARP_LOG || warp == SLUT_WARP_LOGLIN || warp == SLUT_WARP_NL_QODDS) {
+        double ln_p = log(p);
+        return (warp == SLUT_WARP_LOGLIN) ? ln_p + p / scale : ln_p;
+    }
+    if (warp == SLUT_WARP_LOG1P) {
         /* log1p only where 1 + x would lose digits: above x = 1, ln(1 + x) ≥ ln 2 and the
            rounding of 1 + x costs ≤ 1 ulp, at the price of a plain log. */
         double x = (p - p_min) / scale;
         return (x > 1.0) ? log(1.0 + x) : log1p(x);
     }
-    case SLUT_WARP_ASINH_COT: {
+    if (warp == SLUT_WARP_ASINH_COT || warp == SLUT_WARP_ASINH_COT_PEAK) {
         /* asinh(cot p) = ln(cot p + csc p) = ln((1 + cos p)/sin p); the last form keeps
            full relative precision as p → 0 and is exact 0 at p = π/2. */
-        return -log((1.0 + cos(p)) / sin(p));
-    }
-    case SLUT_WARP_SQRT1P: return sqrt(fmax(1.0 + p, 0.0));
-    case SLUT_WARP_LOGLIN: return log(p) + p / scale;
-    case SLUT_WARP_NL_QODDS: return log(p);
-    case SLUT_WARP_ASINH_COT_PEAK: {
-        /* ASINH_COT's form, minus asinh(v/s) = ln(v/s + √(1 + (v/s)²)) (v ≥ 0: no cancellation). */
+        double g = -log(SLUT_ONE_PLUS_COS_OVER_SIN(p));
+        if (warp == SLUT_WARP_ASINH_COT) return g;
+        /* ASINH_COT_PEAK: minus asinh(v/s) = ln(v/s + √(1 + (v/s)²)) (v ≥ 0: no cancellation). */
         double v_over_s = fmax(SLUT_PIO2_HI - p, 0.0) / scale;
-        return -log((1.0 + cos(p)) / sin(p)) - log(v_over_s + sqrt(1.0 + v_over_s * v_over_s));
+        return g - log(v_over_s + sqrt(1.0 + v_over_s * v_over_s));
     }
-    default: return p;
-    }
+    if (warp == SLUT_WARP_SQRT1P) return sqrt(fmax(1.0 + p, 0.0));
+    return p; /* SLUT_WARP_LINEAR */
 }
 
 /* Inverse of ASINH_COT_PEAK in t = cot p ≥ 0 (v = π/2 − p = atan t): the root of
@@ -123,21 +128,19 @@ SLUT_FN double slut_loglin_inverse(double y, double s) {
     return p;
 }
 
-/* Inverse warp g⁻¹(y). */
+/* Inverse warp g⁻¹(y) (ifs, not a switch: see slut_warp_forward). */
 SLUT_FN double slut_warp_inverse(int warp, double y, double p_min, double scale) {
-    switch (warp) {
-    case SLUT_WARP_LOG: return exp(y);
-    case SLUT_WARP_LOG1P: return p_min + scale * expm1(y);
-    case SLUT_WARP_ASINH_COT: {
+    if (warp == SLUT_WARP_LOG) return exp(y);
+    if (warp == SLUT_WARP_LOG1P) return p_min + scale * expm1(y);
+    if (warp == SLUT_WARP_ASINH_COT) {
         /* y = −asinh(cot p)  ⇒  cot p = sinh(−y)  ⇒  p = atan2(1, sinh(−y)). */
         return atan2(1.0, sinh(-y));
     }
-    case SLUT_WARP_SQRT1P: return y * y - 1.0;
-    case SLUT_WARP_LOGLIN: return slut_loglin_inverse(y, scale);
-    case SLUT_WARP_NL_QODDS: return exp(y);
-    case SLUT_WARP_ASINH_COT_PEAK: return slut_asinh_cot_peak_inverse(y, scale);
-    default: return y;
-    }
+    if (warp == SLUT_WARP_SQRT1P) return y * y - 1.0;
+    if (warp == SLUT_WARP_LOGLIN) return slut_loglin_inverse(y, scale);
+    if (warp == SLUT_WARP_NL_QODDS) return exp(y);
+    if (warp == SLUT_WARP_ASINH_COT_PEAK) return slut_asinh_cot_peak_inverse(y, scale);
+    return y; /* SLUT_WARP_LINEAR */
 }
 
 /* p clamped to an axis [p_min, p_max], NaN to p_min (clamp-to-edge, as the samplers). */

@@ -91,6 +91,9 @@
 #  define SLUT_IN_PLANE_TOLERANCE 1e-6
 #  define SLUT_LOGLIN_MAX_STEPS 60
 #  define SLUT_LOGLIN_CONVERGED 2.4e-7
+/* (1 + cos x)/sin x for x in (0, π/2] from one polynomial sin/cos pair (common.slsl): the
+   values of slut_cos and slut_sin, half their work (slut_warp_forward). */
+#  define SLUT_ONE_PLUS_COS_OVER_SIN(x) slut_one_plus_cos_over_sin(x)
 /* SLUT_PIO2_HI and SLUT_PIO2_LO, π/2 split for float, come from common.slsl (its float
  * math needs them before this header). */
 #endif
@@ -189,6 +192,8 @@ SLUT_FN void slut_check_failed(const char *file, int line, const char *condition
 #define SLUT_IN_PLANE_TOLERANCE 1e-15     /* a unit-vector cosine this far below 0 is 0 (rounding) */
 #define SLUT_LOGLIN_MAX_STEPS 60          /* slut_loglin_inverse: Newton steps at most */
 #define SLUT_LOGLIN_CONVERGED 4e-16       /* slut_loglin_inverse: a relative step this small is the root */
+/* (1 + cos x)/sin x (the ASINH_COT warps' log argument; one sin/cos pair in the shaders). */
+#define SLUT_ONE_PLUS_COS_OVER_SIN(x) ((1.0 + cos(x)) / sin(x))
 
 /* π/2 split so that π/2 − v is exact for v near π/2 (Sterbenz, plus the tail). */
 #define SLUT_PIO2_HI 1.57079632679489655800e+00 /* double nearest π/2 */

@@ -21,21 +21,12 @@
 import { existsSync, readFileSync } from 'node:fs';
 import { basename } from 'node:path';
 import { parseSlut } from '../../tests/js/slut.mjs';
+import { parseArgs, launchSwiftShader, blankPage, median } from './bench_chromium.mjs';
 
-const args = process.argv.slice(2);
-const valued = ['--chromium', '--rounds', '--frames', '--lamps', '--near'];
-const opt = (name, fallback) => { const i = args.indexOf(name); return i >= 0 ? args[i + 1] : fallback; };
-const positional = args.filter((a, i) => !a.startsWith('--') && !(i > 0 && valued.includes(args[i - 1])));
 const usage = 'usage: node bench_airlight.mjs TABLE.slut SNIPPET.essl [SNIPPET2.essl ...] [--chromium PATH] ' +
 	'[--rounds 1..100] [--frames 1..100] [--lamps 1..6] [--near NEAR_E3.slut]';
-function intOption(name, fallback, lo, hi) {
-	const text = opt(name, String(fallback)), v = Number(text);
-	if (!Number.isInteger(v) || v < lo || v > hi) {
-		console.error(`bench_airlight: ${name} ${text}: expected an integer in [${lo}, ${hi}]\n${usage}`);
-		process.exit(2);
-	}
-	return v;
-}
+const { opt, positional, intOption } = parseArgs(process.argv.slice(2), ['--chromium', '--rounds', '--frames', '--lamps', '--near'],
+	[], usage, 'bench_airlight');
 if (positional.length < 2) { console.error(usage); process.exit(2); }
 const rounds = intOption('--rounds', 5, 1, 100), frames = intOption('--frames', 3, 1, 100);
 const lamps = intOption('--lamps', 6, 1, 6);
@@ -43,16 +34,6 @@ const [tablePath, ...snippetPaths] = positional;
 const nearPath = opt('--near');
 for (const p of [...positional.flatMap((a) => a.split('+')), ...(nearPath ? [nearPath] : [])])
 	if (!existsSync(p)) { console.error(`bench_airlight: ${p}: no such file`); process.exit(2); }
-const chromium = opt('--chromium') ?? ['/usr/bin/chromium', '/usr/bin/chromium-browser'].find((p) => existsSync(p));
-if (!chromium) { console.log('skipped: chromium not found'); process.exit(77); }
-let puppeteer;
-try {
-	puppeteer = (await import('puppeteer-core')).default;
-} catch (e) {
-	console.log(`skipped: npm modules missing (npm ci in examples/web): ${e.message}`);
-	process.exit(77);
-}
-
 const table = parseSlut(readFileSync(tablePath), tablePath);
 if (table.kind !== 'airlight_F' || table.axes[0].warpName !== 'log1p' || table.axes[1].warpName !== 'asinh_cot') {
 	console.error(`bench_airlight: ${tablePath}: expected the default airlight_F table (u log1p, w asinh_cot), got ${table.kind}`);
@@ -73,6 +54,10 @@ const methods = snippetPaths.map((p, k) => {
 methods.push({ name: 'closed form × e^{−σ_t D} (Macklin 2010)', snippet: '', builtin: 'closed' });
 methods.push({ name: 'Sun et al. 2005, 64² F table, two fetches', snippet: '', builtin: 'sun' });
 
+// The two baselines' GLSL, shared with bench/bench_gpu_pixel.cpp (bench/shaders/).
+const [closedGlsl, sunGlsl] = ['closed_form.glsl', 'sun2005.glsl'].map((name) =>
+	readFileSync(new URL(`../../bench/shaders/${name}`, import.meta.url), 'utf8'));
+
 // Sun et al.'s F(u, v) = ∫_0^v e^{−u tan ξ} dξ on the Rain sample's plain grid: composite
 // Simpson, 4096 intervals (the integrand is smooth up to ξ = π/2, where it vanishes for u > 0).
 const kFCount = 64, kFUMax = 10.0;
@@ -88,7 +73,7 @@ for (let j = 0; j < kFCount; ++j) {
 }
 
 // The page: everything inside one evaluate (no server; WebGL2 on about:blank).
-async function pageBench({ methods, values, air, nearTable, fTable, fCount, fUMax, rounds, frames, lamps }) {
+async function pageBench({ methods, values, air, nearTable, fTable, fCount, fUMax, rounds, frames, lamps, closedGlsl, sunGlsl }) {
 	const W = 480, H = 270;
 	const canvas = document.createElement('canvas');
 	canvas.width = W; canvas.height = H;
@@ -144,21 +129,7 @@ async function pageBench({ methods, values, air, nearTable, fTable, fCount, fUMa
 
 	const vs = '#version 300 es\nvoid main() { vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));' +
 		' gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0); }\n';
-	const closed = `
-float closed_form_attenuated(float ss, float sa, float i0, float dist, float sg, float cg, float len) {
-    if (!(ss > 0.0) || !(i0 > 0.0) || !(len > 0.0)) return 0.0;
-    float h = dist * max(sg, 0.0);
-    float den = dist * (dist - len * cg);
-    float angle_over_h;
-    if (den > 0.0) {
-        float x = len * h / den;
-        angle_over_h = ((x == 0.0) ? 1.0 : atan(x) / x) * (len / den);
-    } else {
-        if (!(h > 0.0)) return uintBitsToFloat(0x7F800000u);
-        angle_over_h = (den == 0.0) ? 1.5707963 / h : (3.14159265 - atan(len * h / -den)) / h;
-    }
-    return ss * 0.0795774715 * i0 * angle_over_h * exp(-(ss + sa) * dist);
-}
+	const closed = `${closedGlsl}
 float closed_points(vec3 eye, vec3 d, vec3 light, float s, float ss, float sa, float i0) {
     vec3 to_light = light - eye;
     float dist = length(to_light);
@@ -180,22 +151,7 @@ float closed_points(vec3 eye, vec3 d, vec3 light, float s, float ss, float sa, f
                      5.0, 0.2, lights[k].w, vec3(0.0, 0.0, 1.0), -d, rel, slut_inf(), 1.0, false) * att;
         }
     }`;
-	const sun = `
-uniform sampler2D f_table;
-uniform float f_u_max;
-float sun_F(float u, float v) {
-    vec2 unit = clamp(vec2(u / f_u_max, v / 1.5707963), 0.0, 1.0);
-    vec2 size = vec2(textureSize(f_table, 0));
-    return textureLod(f_table, (unit * (size - 1.0) + 0.5) / size, 0.0).r;
-}
-float sun2005(float ss, float sa, float i0, float dist, float sg, float cg, float len) {
-    float st = ss + sa;
-    float a1 = st * dist * sg;
-    float a0 = ss * i0 * exp(-st * dist * cg) / (6.2831853 * dist * sg);
-    float v_far = 0.7853982 + 0.5 * atan((len - dist * cg) / (dist * sg));
-    float v_near = 0.5 * atan(sg, cg);
-    return a0 * (sun_F(a1, v_far) - sun_F(a1, v_near));
-}
+	const sun = `${sunGlsl}
 float sun_points(vec3 eye, vec3 d, vec3 light, float s, float ss, float sa, float i0) {
     vec3 to_light = light - eye;
     float dist = length(to_light);
@@ -315,23 +271,15 @@ void main() {
 	return { renderer, W, H, results, haveFloatLinear };
 }
 
-const browser = await puppeteer.launch({
-	executablePath: chromium, headless: true,
-	args: ['--headless=new', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox', '--disable-gpu-sandbox'],
-	protocolTimeout: 1800000,
-});
+const browser = await launchSwiftShader(opt('--chromium'));
 try {
-	const page = await browser.newPage();
-	const start = Date.now();
-	page.on('console', (m) => console.error(`[${((Date.now() - start) / 1000).toFixed(1)} s] ${m.text()}`));
-	await page.goto('about:blank');
+	const page = await blankPage(browser);
 	const out = await page.evaluate(pageBench, {
 		methods, values: Array.from(table.values), rounds, frames, lamps,
-		fTable: Array.from(fTable), fCount: kFCount, fUMax: kFUMax,
+		fTable: Array.from(fTable), fCount: kFCount, fUMax: kFUMax, closedGlsl, sunGlsl,
 		nearTable: near ? { axes: near.axes, values: Array.from(near.values) } : undefined,
 		air: { u: au, w: aw },
 	});
-	const median = (a) => { const s = [...a].sort((x, y) => x - y); return s[Math.floor(s.length / 2)]; };
 	const pixels = out.W * out.H;
 	console.log(`${out.renderer}; ${out.W} x ${out.H} pixels, ${lamps} lamp(s), ${rounds} rounds x ${frames} frames, ` +
 		`table ${basename(tablePath)} (${au.count} x ${aw.count}); F table ${out.haveFloatLinear ? 'R32F' : 'R16F (no OES_texture_float_linear)'}`);
