@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include <boost/math/quadrature/exp_sinh.hpp>
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 
 namespace scatterlut {
@@ -146,72 +147,84 @@ double reference_scaled_tail_hg(double u_in, double w_in, double g_in) {
 namespace scatterlut {
 namespace {
 
-constexpr real kSurfaceTolerance = 1e-13L;
-constexpr real kPi = 3.141592653589793238462643383279502884L;
+// The surface reference works in double with its own rules (its integrand is itself an
+// integral, so the airlight's long-double rule per γ would take seconds per node): Boost.Math's
+// exp_sinh for the airlight along each ray, adaptive 31-point Gauss–Kronrod over γ and φ.
+constexpr double kSurfaceTolerance = 1e-12;
+constexpr unsigned kSurfaceMaxDepth = 12;
+constexpr double kPi = 3.141592653589793238462643383279502884;
 
-// ∫_a^b f by adaptive 61-point Gauss–Kronrod at kSurfaceTolerance (scaled to [0, 1] as `piece`).
-template <class F> real surface_piece(const F &f, real a, real b) {
+// ∫_a^b f by adaptive 31-point Gauss–Kronrod (scaled to [0, 1] as `piece`).
+template <class F> double surface_piece(const F &f, double a, double b) {
     if (!(b > a)) return 0;
-    const real len = b - a;
-    auto scaled = [&](real x) { return len * f(a + len * x); };
-    real error = 0;
-    return boost::math::quadrature::gauss_kronrod<real, 61>::integrate(scaled, real(0), real(1), kMaxDepth,
-                                                                       kSurfaceTolerance, &error);
+    const double len = b - a;
+    auto scaled = [&](double x) { return len * f(a + len * x); };
+    double error = 0;
+    return boost::math::quadrature::gauss_kronrod<double, 31>::integrate(scaled, 0.0, 1.0, kSurfaceMaxDepth,
+                                                                         kSurfaceTolerance, &error);
 }
 
-// ∫ f over [lo, hi] split at the sorted, distinct `breaks` inside it.
-template <class F> real surface_pieces(const F &f, std::vector<real> breaks, real lo, real hi) {
-    std::vector<real> kept = {lo, hi};
-    for (real p : breaks)
+// ∫ f over [lo, hi] split at the `breaks` inside it.
+template <class F> double surface_pieces(const F &f, std::vector<double> breaks, double lo, double hi) {
+    std::vector<double> kept = {lo, hi};
+    for (double p : breaks)
         if (p > lo && p < hi) kept.push_back(p);
     std::sort(kept.begin(), kept.end());
     kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
-    real sum = 0;
+    double sum = 0;
     for (size_t i = 0; i + 1 < kept.size(); ++i) sum += surface_piece(f, kept[i], kept[i + 1]);
     return sum;
+}
+
+// w·G̃(u, w) = ∫_0^∞ e^{−u y}/(1 + (τ + y)²) dy, τ = cot w ≥ 0, by Boost.Math's exp_sinh
+// (double-exponential on the half line; the integrand decays like e^{−u y}/y²).
+double ray_airlight(double u, double w) {
+    const double tau = std::cos(w) / std::sin(w);
+    auto f = [=](double y) { const double x = tau + y; return std::exp(-u * y) / (1 + x * x); };
+    // Not const: Boost 1.74 declares integrate const but defines it without (one per thread).
+    thread_local boost::math::quadrature::exp_sinh<double> rule;
+    double error = 0, l1 = 0;
+    return rule.integrate(f, kSurfaceTolerance, &error, &l1, nullptr);
 }
 
 // K_n(θ, γ) = 2 ∫_0^{φ_end} (a + b cos φ)^n dφ, a = cos θ cos γ, b = sin θ sin γ: the integrand is
 // positive up to φ_end (π when a ≥ b, acos(−a/b) when |a| < b) and peaked at φ = 0 with the
 // width √((a + b)/(n b)) (its Gaussian form); breaks at 1, 4, 16 times that width.
-real azimuthal_kernel(int n, real theta, real gamma) {
-    const real a = std::cos(theta) * std::cos(gamma), b = std::fabs(std::sin(theta) * std::sin(gamma));
+double azimuthal_kernel(int n, double theta, double gamma) {
+    const double a = std::cos(theta) * std::cos(gamma), b = std::fabs(std::sin(theta) * std::sin(gamma));
     if (a + b <= 0) return 0;
     if (b == 0) return 2 * kPi * std::pow(a, n);
-    const real end = a >= b ? kPi : std::acos(std::max(real(-1), std::min(real(1), -a / b)));
-    auto f = [=](real phi) { return std::pow(std::max(real(0), a + b * std::cos(phi)), n); };
-    const real width = std::sqrt((a + b) / (n * b));
-    return 2 * surface_pieces(f, {width, 4 * width, 16 * width}, real(0), end);
+    const double end = a >= b ? kPi : std::acos(std::max(-1.0, std::min(1.0, -a / b)));
+    auto f = [=](double phi) { return std::pow(std::max(0.0, a + b * std::cos(phi)), n); };
+    const double width = std::sqrt((a + b) / (n * b));
+    return 2 * surface_pieces(f, {width, 4 * width, 16 * width}, 0.0, end);
 }
 
 } // namespace
 
-double reference_surface_G(int n, double T_in, double theta_in) {
-    const real T = T_in, theta = theta_in;
+double reference_surface_G(int n, double T, double theta) {
     // A(T, γ) sin γ = 2 e^{−T} w2 G̃(T sin γ, w2): the airlight arriving along the ray from the
     // surface point at angle γ from the direction to the light (γ = 0: towards the light).
-    auto f = [=](real gamma) {
-        const double w2 = static_cast<double>((kPi - gamma) / 2);
-        if (!(w2 > 0)) return real(0);
-        const real incident = 2 * std::exp(-T) * w2 *
-                              real(reference_scaled_tail(static_cast<double>(T * std::sin(gamma)), w2));
-        return incident * azimuthal_kernel(n, theta, gamma);
+    auto f = [=](double gamma) {
+        const double w2 = (kPi - gamma) / 2;
+        if (!(w2 > 0)) return 0.0;
+        return 2 * std::exp(-T) * ray_airlight(T * std::sin(gamma), w2) * azimuthal_kernel(n, theta, gamma);
     };
     // Where the ring of directions at γ meets the horizon (|π/2 − θ|, π − that), the lobe
     // (θ, θ ± 1, 3, 10 widths 1/√n) and the near-light scale of A sin γ (1, 4, 16, 64 × 1/T).
-    const real edge = std::fabs(kPi / 2 - theta);
-    std::vector<real> breaks = {edge, kPi - edge};
+    const double edge = std::fabs(kPi / 2 - theta);
+    std::vector<double> breaks = {edge, kPi - edge};
     if (n > 1) {
-        const real width = 1 / std::sqrt(real(n));
+        const double width = 1 / std::sqrt(double(n));
         breaks.push_back(theta);
-        for (real k : {1, 3, 10}) {
+        for (double k : {1.0, 3.0, 10.0}) {
             breaks.push_back(theta - k * width);
             breaks.push_back(theta + k * width);
         }
     }
     if (T > 1)
-        for (real k : {1, 4, 16, 64}) breaks.push_back(k / T);
-    return static_cast<double>(surface_pieces(f, breaks, real(0), kPi));
+        for (double k : {1.0, 4.0, 16.0, 64.0}) breaks.push_back(k / T);
+    return surface_pieces(f, breaks, 0.0, kPi);
 }
 
 } // namespace scatterlut
