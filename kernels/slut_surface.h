@@ -195,14 +195,14 @@ SLUT_FN double slut_surface_G_fixed(int n, double optical_distance, double theta
     for (int i = 0; i + 1 < nb; ++i) {
         double lo = b[i], length = b[i + 1] - b[i];
         for (int p = 0; p < subpanels; ++p) {
-            double half = 0.5 * panel, mid = panel * SLUT_DOUBLE(p) + half, part = 0.0;
+            double half_len = 0.5 * panel, mid = panel * SLUT_DOUBLE(p) + half_len, part = 0.0;
             for (int k = 0; k < 16; ++k) {
-                double t = mid + half * ((k < 8) ? -slut_gl16_x[k] : slut_gl16_x[k - 8]);
+                double t = mid + half_len * ((k < 8) ? -slut_gl16_x[k] : slut_gl16_x[k - 8]);
                 double weight = slut_gl16_w[(k < 8) ? k : k - 8];
                 double gamma = lo + length * t * t * (3.0 - 2.0 * t);
                 part += weight * slut_surface_integrand(n, optical_distance, th, gamma) * 6.0 * t * (1.0 - t);
             }
-            sum += half * length * part;
+            sum += half_len * length * part;
         }
     }
     return fmax(sum, 0.0);

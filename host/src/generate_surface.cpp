@@ -19,8 +19,8 @@ extern "C" {
 namespace scatterlut {
 namespace {
 
-// The runtime's G_n from a table (SurfaceTable reads the diffuse G0 table; Phong tables: not yet).
-double table_G(const SurfaceTable &table, double T, double theta) { return table.G0(T, theta); }
+// The runtime's G_n from a table.
+double table_G(const SurfaceTable &table, double T, double theta) { return table.G(T, theta); }
 
 // G_n at node (iT, iθ) of the table: the runtime's value at the node's parameters (bilinear
 // weights 1 and 0 there, so the stored value decoded).
@@ -36,13 +36,10 @@ std::string surface_file_stem(int exponent) {
     return exponent == 1 ? "surface_G0" : "surface_G" + std::to_string(exponent);
 }
 
-int surface_table_exponent(const Table &) { return 1; } // the runtime reads the diffuse table only (so far)
+int surface_table_exponent(const Table &table) { return table_surface_exponent(table); }
 
 Table make_surface_table_layout(const SurfacePlan &plan) {
-    if (plan.exponent != 1)
-        throw std::invalid_argument("surface_G: Phong tables (exponent " + std::to_string(plan.exponent) +
-                                    " > 1) are not available yet; only the diffuse table G0 (exponent 1)");
-    Table t = surface_G0_layout(plan.T_max, plan.n_T, plan.n_theta);
+    Table t = surface_G_layout(plan.exponent, plan.T_max, plan.n_T, plan.n_theta);
     t.storage = plan.storage;
     return t;
 }
@@ -75,7 +72,7 @@ std::vector<double> integrate_surface_G(Device &device, const Table &layout, dou
     for (int j = 0; j < atheta.count; ++j)
         for (int i = 0; i < aT.count; ++i) {
             const size_t k = static_cast<size_t>(j) * static_cast<size_t>(aT.count) + static_cast<size_t>(i);
-            stored[k] = surface_G0_encode(T_nodes[static_cast<size_t>(i)], theta_nodes[static_cast<size_t>(j)], G[k]);
+            stored[k] = surface_G_encode(exponent, T_nodes[static_cast<size_t>(i)], theta_nodes[static_cast<size_t>(j)], G[k]);
         }
     return stored;
 }

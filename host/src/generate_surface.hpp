@@ -19,14 +19,11 @@ namespace scatterlut {
 // rule per interval (slut_surface_subpanels_for_tolerance), measured ≤ 8.9e-11 against the
 // adaptive quadrature (kernels/slut_surface.h).
 inline constexpr double kSurfaceIntegrationTolerance = 1e-10;
-// Beyond this optical distance e^{−T} G0(0, θ) nears double's smallest numbers (e^{−745}); the
-// planner caps T_max here (the runtime integrates exactly beyond a table's T_max).
-inline constexpr double kSurfaceMaxTableT = 600.0;
 
 struct SurfacePlan {
     int exponent = 1;     // Phong exponent n; 1: the diffuse table G0
-    double T_max = 30.0;  // σ_t·D, the T axis spans [0, T_max] (log1p, kSurfaceG0TScale)
-    int n_T = 64, n_theta = 65; // node counts; n_theta odd (a node at θ = π/2)
+    double T_max = 30.0;  // σ_t·D, the T axis spans [0, T_max] (log1p, surface_G_T_scale), ≤ kSurfaceGTMaxLimit
+    int n_T = 64, n_theta = 65; // node counts; n_theta odd for n = 1 (a node at θ_s = π/2)
     double integration_tolerance = kSurfaceIntegrationTolerance;
     Storage storage = Storage::F32;
 };
@@ -35,7 +32,7 @@ struct SurfacePlan {
 // the diffuse table), "surface_G<n>" otherwise (surface_G20: the Phong lobe of exponent 20).
 std::string surface_file_stem(int exponent);
 
-// The Phong exponent a surface_G table holds (1: the diffuse G0).
+// The Phong exponent a surface_G table holds (1: the diffuse G0; table_surface_exponent).
 int surface_table_exponent(const Table &table);
 
 Table make_surface_table_layout(const SurfacePlan &plan);

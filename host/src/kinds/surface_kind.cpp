@@ -49,7 +49,9 @@ double optical_distance(const SurfaceQuery &q) { return (q.sigma_s_per_m + q.sig
 double exact_of(const SurfaceQuery &q, int n) {
     return n == 1 ? surface_irradiance_exact(q) : surface_specular_exact(q, n);
 }
-double table_of(const SurfaceTable &table, const SurfaceQuery &q) { return table.irradiance(q); }
+double table_of(const SurfaceTable &table, const SurfaceQuery &q) {
+    return table.exponent() == 1 ? table.irradiance(q) : table.specular(q);
+}
 
 // The scene's surface queries for exponent n: for every medium whose surfaces need n and every
 // point light lighting it, in equal shares, each colour channel in turn: D log-uniform over
@@ -91,14 +93,9 @@ public:
     const RuntimeKind &runtime() const override { return surface_runtime_kind(); }
     bool per_exponent() const override { return true; }
 
-    void add_demand(const Scene &scene, const SceneMedium &m, const SceneLight &l, std::any &state,
+    void add_demand(const Scene &, const SceneMedium &m, const SceneLight &l, std::any &state,
                     PlannedTable &t) const override {
         if (t.exponent < 1 || !m.viewer_inside || !m.has_surfaces) return;
-        if (t.exponent > 1) // SurfaceTable reads the diffuse table only (so far): refused, not dropped
-            throw std::invalid_argument(
-                scene.source + ":" + std::to_string(m.surfaces.line) + ": key 'surfaces.phong_exponents' of medium '" +
-                m.name + "': the Phong table G_n (n = " + std::to_string(t.exponent) +
-                ") is not available in this version (expected only diffuse = true: the diffuse table G0)");
         if (!state.has_value()) state = Demand{};
         Demand &d = std::any_cast<Demand &>(state);
         const double sigma_t = m.sigma_t_per_m(), d_hi = m.surfaces.light_distance_m.max;
@@ -116,14 +113,14 @@ public:
         SurfacePlan p;
         p.exponent = t.exponent;
         p.T_max = d.T_max;
-        if (p.T_max > kSurfaceMaxTableT) {
-            p.T_max = kSurfaceMaxTableT;
-            t.domain_notes.push_back("T_max lowered from " + fmt("%.4g", d.T_max) + " to " + fmt("%g", kSurfaceMaxTableT) +
+        if (p.T_max > kSurfaceGTMaxLimit) {
+            p.T_max = kSurfaceGTMaxLimit;
+            t.domain_notes.push_back("T_max lowered from " + fmt("%.4g", d.T_max) + " to " + fmt("%g", kSurfaceGTMaxLimit) +
                                      ": beyond it e^-T underflows towards double's smallest numbers (the runtime "
                                      "integrates exactly there)");
         }
         p.n_T = half_count(p.n_T);
-        p.n_theta = half_count(p.n_theta) | 1;
+        p.n_theta = half_count(p.n_theta) | 1; // odd (needed for n = 1)
         t.stem = surface_file_stem(t.exponent);
         t.target_rel = d.relative_error;
         t.plan = p;
@@ -135,8 +132,9 @@ public:
 
     std::vector<int> counts(const std::any &plan) const override { return {plan_of(plan).n_T, plan_of(plan).n_theta}; }
     void set_counts(std::any &plan, const std::vector<int> &c) const override {
-        plan_of(plan).n_T = c[0];
-        plan_of(plan).n_theta = std::max(3, c[1] | 1); // odd: a node at theta = pi/2
+        SurfacePlan &p = plan_of(plan);
+        p.n_T = c[0];
+        p.n_theta = p.exponent == 1 ? std::max(3, c[1] | 1) : std::max(3, c[1]); // n = 1: a node at theta_s = pi/2
     }
     void set_storage(std::any &plan, Storage storage) const override { plan_of(plan).storage = storage; }
     double integration_tolerance(const std::any &plan) const override { return plan_of(plan).integration_tolerance; }
@@ -196,7 +194,9 @@ public:
             {"exact", n == 1 ? "adaptive quadrature per call (surface_irradiance_exact)"
                              : "adaptive quadrature per call (surface_specular_exact)",
              true, [q, n](size_t k) { return exact_of(q->queries[k], n); }},
-            {"table", "one sample of the planned table (SurfaceTable::irradiance)", false, table_radiance(table, qs)}};
+            {"table", n == 1 ? "one sample of the planned table (SurfaceTable::irradiance)"
+                             : "one sample of the planned table (SurfaceTable::specular)",
+             false, table_radiance(table, qs)}};
         if (n == 1) {
             m.push_back({"no_extinction", "closed form without extinction (surface_irradiance_no_extinction)", false,
                          [q](size_t k) { return surface_irradiance_no_extinction(q->queries[k]); }});
@@ -217,7 +217,7 @@ public:
         return [surface, params, count] {
             const std::vector<double> &pp = *params;
             double sum = 0;
-            for (size_t i = 0; i < count; ++i) sum += surface->G0(pp[2 * i], pp[2 * i + 1]);
+            for (size_t i = 0; i < count; ++i) sum += surface->G(pp[2 * i], pp[2 * i + 1]);
             return sum;
         };
     }
@@ -226,7 +226,8 @@ public:
         return " The surface tables answer irradiance (W/m^2), not radiance: E_ss, the airlight a surface point "
                "receives over its hemisphere (Sun et al. 2005). no_extinction is its exact limit sigma_t -> 0 "
                "(sigma_s I0/(2D) [cos theta_s + E(sin theta_s)], an upper bound otherwise); attenuated multiplies it "
-               "by e^(-sigma_t D), which ignores that scattered light reaches the surface over shorter paths.";
+               "by e^(-sigma_t D), which ignores that scattered light reaches the surface over shorter paths. A Phong "
+               "table (exponent n > 1) answers S_n, the lobe-weighted incident airlight, which has no closed form here.";
     }
 };
 
