@@ -150,7 +150,7 @@ namespace {
 // The surface reference works in double with its own rules (its integrand is itself an
 // integral, so the airlight's long-double rule per γ would take seconds per node): Boost.Math's
 // exp_sinh for the airlight along each ray, adaptive 31-point Gauss–Kronrod over γ and φ.
-constexpr double kSurfaceTolerance = 1e-12;
+constexpr double kSurfaceTolerance = 1e-10;
 constexpr unsigned kSurfaceMaxDepth = 12;
 constexpr double kPi = 3.141592653589793238462643383279502884;
 
