@@ -15,17 +15,21 @@ using real = long double;
 constexpr real kTolerance = 1e-15L;
 constexpr unsigned kMaxDepth = 15;
 
-// ∫_a^b f by 61-point Gauss–Kronrod on [0, 1] after scaling: Boost compares the error
-// estimate of the unscaled rule with tol·|estimate|, so a narrow unscaled piece would recurse
-// to the maximum depth.
-template <class F> real piece(const F &f, real a, real b) {
+// ∫_a^b f by adaptive `Points`-point Gauss–Kronrod on [0, 1] after scaling: Boost compares the
+// error estimate of the unscaled rule with tol·|estimate|, so a narrow unscaled piece would
+// recurse to the maximum depth.
+template <class Real, unsigned Points, class F>
+Real scaled_piece(const F &f, Real a, Real b, unsigned max_depth, Real tolerance) {
     if (!(b > a)) return 0;
-    const real len = b - a;
-    auto scaled = [&](real x) { return len * f(a + len * x); };
-    real error = 0;
-    return boost::math::quadrature::gauss_kronrod<real, 61>::integrate(scaled, real(0), real(1), kMaxDepth,
-                                                                       kTolerance, &error);
+    const Real len = b - a;
+    auto scaled = [&](Real x) { return len * f(a + len * x); };
+    Real error = 0;
+    return boost::math::quadrature::gauss_kronrod<Real, Points>::integrate(scaled, Real(0), Real(1), max_depth,
+                                                                           tolerance, &error);
 }
+
+// The airlight's and near light's pieces: 61 points in long double.
+template <class F> real piece(const F &f, real a, real b) { return scaled_piece<real, 61>(f, a, b, kMaxDepth, kTolerance); }
 
 // ∫_a^∞ f with t = a + L x/(1 − x), dt = L dx/(1 − x)²: L the scale of the decay.
 template <class F> real tail(const F &f, real a, real scale) {
@@ -154,14 +158,9 @@ constexpr double kSurfaceTolerance = 1e-10;
 constexpr unsigned kSurfaceMaxDepth = 12;
 constexpr double kPi = 3.141592653589793238462643383279502884;
 
-// ∫_a^b f by adaptive 31-point Gauss–Kronrod (scaled to [0, 1] as `piece`).
+// ∫_a^b f by adaptive 31-point Gauss–Kronrod in double.
 template <class F> double surface_piece(const F &f, double a, double b) {
-    if (!(b > a)) return 0;
-    const double len = b - a;
-    auto scaled = [&](double x) { return len * f(a + len * x); };
-    double error = 0;
-    return boost::math::quadrature::gauss_kronrod<double, 31>::integrate(scaled, 0.0, 1.0, kSurfaceMaxDepth,
-                                                                         kSurfaceTolerance, &error);
+    return scaled_piece<double, 31>(f, a, b, kSurfaceMaxDepth, kSurfaceTolerance);
 }
 
 // ∫ f over [lo, hi] split at the `breaks` inside it.
