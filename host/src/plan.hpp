@@ -54,6 +54,9 @@ struct PlannedTable {
     // the kind's name.
     double phase_g = 0.0;
     std::string stem;
+    // Per-exponent kinds (TableKind::per_exponent): the surfaces' exponent the table holds
+    // (1: diffuse, n > 1: Phong), set by the planner before add_demand; 0 for the other kinds.
+    int exponent = 0;
 
     const PlanTrial *chosen_trial() const { return chosen >= 0 ? &trials[static_cast<size_t>(chosen)] : nullptr; }
     const char *name() const { return stem.empty() ? kind->name() : stem.c_str(); }

@@ -88,6 +88,35 @@ void add_per_phase_tables(const Scene &scene, const TableKind &kind, const Airli
                          std::to_string(made) + " table(s)");
 }
 
+// A per-exponent kind (TableKind::per_exponent): one table for each distinct exponent of the
+// scene's lit surfaces (ascending), asked by the media whose surfaces need it with the point
+// lights that light them.
+void add_per_exponent_tables(const Scene &scene, const TableKind &kind, const AirlightOverrides &overrides,
+                             ScenePlan &plan) {
+    std::vector<int> exponents;
+    for (const SceneMedium &m : scene.media)
+        if (m.sigma_s_per_m > 0 && m.has_surfaces)
+            for (int n : m.surfaces.exponents())
+                if (std::find(exponents.begin(), exponents.end(), n) == exponents.end()) exponents.push_back(n);
+    std::sort(exponents.begin(), exponents.end());
+    for (int n : exponents) {
+        PlannedTable t;
+        t.kind = &kind;
+        t.exponent = n;
+        std::any state;
+        for (const SceneMedium &m : scene.media) {
+            if (m.sigma_s_per_m == 0 || !m.has_surfaces) continue;
+            const std::vector<int> e = m.surfaces.exponents();
+            if (std::find(e.begin(), e.end(), n) == e.end()) continue;
+            for (const SceneLight &l : scene.lights)
+                if (Scene::lights_medium(l, m) && l.type == LightType::Point) kind.add_demand(scene, m, l, state, t);
+        }
+        if (t.requested_by.empty()) continue;
+        kind.finish_plan(scene, state, overrides, t);
+        plan.tables.push_back(std::move(t));
+    }
+}
+
 } // namespace
 
 ScenePlan derive_plan(const Scene &scene, Storage storage, const AirlightOverrides &overrides) {
@@ -125,6 +154,10 @@ ScenePlan derive_plan(const Scene &scene, Storage storage, const AirlightOverrid
     for (size_t k = 0; k < kinds.size(); ++k) {
         if (kinds[k]->per_phase()) {
             add_per_phase_tables(scene, *kinds[k], overrides, plan);
+            continue;
+        }
+        if (kinds[k]->per_exponent()) {
+            add_per_exponent_tables(scene, *kinds[k], overrides, plan);
             continue;
         }
         if (candidates[k].requested_by.empty()) continue;

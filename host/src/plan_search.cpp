@@ -93,6 +93,7 @@ void resolve_table(PlannedTable &t, const ScenePlan &plan, Device &device, const
     };
     for (int k = 0; k < kMaxTrials; ++k) {
         set_counts(t, counts);
+        counts = counts_of(t); // as the kind keeps them (a surface table's theta count is odd)
         const std::string label = std::string(t.name()) + " trial " + std::to_string(k + 1) + " (" + counts_text(counts) + ")";
         const auto start = std::chrono::steady_clock::now();
         // No callback without a listener: the near-light kernel then runs in one launch.

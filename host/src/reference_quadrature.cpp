@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include <boost/math/quadrature/exp_sinh.hpp>
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 
 namespace scatterlut {
@@ -14,17 +15,21 @@ using real = long double;
 constexpr real kTolerance = 1e-15L;
 constexpr unsigned kMaxDepth = 15;
 
-// ∫_a^b f by 61-point Gauss–Kronrod on [0, 1] after scaling: Boost compares the error
-// estimate of the unscaled rule with tol·|estimate|, so a narrow unscaled piece would recurse
-// to the maximum depth.
-template <class F> real piece(const F &f, real a, real b) {
+// ∫_a^b f by adaptive `Points`-point Gauss–Kronrod on [0, 1] after scaling: Boost compares the
+// error estimate of the unscaled rule with tol·|estimate|, so a narrow unscaled piece would
+// recurse to the maximum depth.
+template <class Real, unsigned Points, class F>
+Real scaled_piece(const F &f, Real a, Real b, unsigned max_depth, Real tolerance) {
     if (!(b > a)) return 0;
-    const real len = b - a;
-    auto scaled = [&](real x) { return len * f(a + len * x); };
-    real error = 0;
-    return boost::math::quadrature::gauss_kronrod<real, 61>::integrate(scaled, real(0), real(1), kMaxDepth,
-                                                                       kTolerance, &error);
+    const Real len = b - a;
+    auto scaled = [&](Real x) { return len * f(a + len * x); };
+    Real error = 0;
+    return boost::math::quadrature::gauss_kronrod<Real, Points>::integrate(scaled, Real(0), Real(1), max_depth,
+                                                                           tolerance, &error);
 }
+
+// The airlight's and near light's pieces: 61 points in long double.
+template <class F> real piece(const F &f, real a, real b) { return scaled_piece<real, 61>(f, a, b, kMaxDepth, kTolerance); }
 
 // ∫_a^∞ f with t = a + L x/(1 − x), dt = L dx/(1 − x)²: L the scale of the decay.
 template <class F> real tail(const F &f, real a, real scale) {
@@ -139,6 +144,86 @@ double reference_scaled_tail_hg(double u_in, double w_in, double g_in) {
     };
     const real integral = integrate(f, breaks, std::numeric_limits<real>::infinity(), u > 0 ? decay : 0);
     return static_cast<double>(integral / w);
+}
+
+} // namespace scatterlut
+
+namespace scatterlut {
+namespace {
+
+// The surface reference works in double with its own rules (its integrand is itself an
+// integral, so the airlight's long-double rule per γ would take seconds per node): Boost.Math's
+// exp_sinh for the airlight along each ray, adaptive 31-point Gauss–Kronrod over γ and φ.
+constexpr double kSurfaceTolerance = 1e-10;
+constexpr unsigned kSurfaceMaxDepth = 12;
+constexpr double kPi = 3.141592653589793238462643383279502884;
+
+// ∫_a^b f by adaptive 31-point Gauss–Kronrod in double.
+template <class F> double surface_piece(const F &f, double a, double b) {
+    return scaled_piece<double, 31>(f, a, b, kSurfaceMaxDepth, kSurfaceTolerance);
+}
+
+// ∫ f over [lo, hi] split at the `breaks` inside it.
+template <class F> double surface_pieces(const F &f, std::vector<double> breaks, double lo, double hi) {
+    std::vector<double> kept = {lo, hi};
+    for (double p : breaks)
+        if (p > lo && p < hi) kept.push_back(p);
+    std::sort(kept.begin(), kept.end());
+    kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+    double sum = 0;
+    for (size_t i = 0; i + 1 < kept.size(); ++i) sum += surface_piece(f, kept[i], kept[i + 1]);
+    return sum;
+}
+
+// w·G̃(u, w) = ∫_0^∞ e^{−u y}/(1 + (τ + y)²) dy, τ = cot w ≥ 0, by Boost.Math's exp_sinh
+// (double-exponential on the half line; the integrand decays like e^{−u y}/y²).
+double ray_airlight(double u, double w) {
+    const double tau = std::cos(w) / std::sin(w);
+    auto f = [=](double y) { const double x = tau + y; return std::exp(-u * y) / (1 + x * x); };
+    // Not const: Boost 1.74 declares integrate const but defines it without (one per thread).
+    thread_local boost::math::quadrature::exp_sinh<double> rule;
+    double error = 0, l1 = 0;
+    return rule.integrate(f, kSurfaceTolerance, &error, &l1, nullptr);
+}
+
+// K_n(θ, γ) = 2 ∫_0^{φ_end} (a + b cos φ)^n dφ, a = cos θ cos γ, b = sin θ sin γ: the integrand is
+// positive up to φ_end (π when a ≥ b, acos(−a/b) when |a| < b) and peaked at φ = 0 with the
+// width √((a + b)/(n b)) (its Gaussian form); breaks at 1, 4, 16 times that width.
+double azimuthal_kernel(int n, double theta, double gamma) {
+    const double a = std::cos(theta) * std::cos(gamma), b = std::fabs(std::sin(theta) * std::sin(gamma));
+    if (a + b <= 0) return 0;
+    if (b == 0) return 2 * kPi * std::pow(a, n);
+    const double end = a >= b ? kPi : std::acos(std::max(-1.0, std::min(1.0, -a / b)));
+    auto f = [=](double phi) { return std::pow(std::max(0.0, a + b * std::cos(phi)), n); };
+    const double width = std::sqrt((a + b) / (n * b));
+    return 2 * surface_pieces(f, {width, 4 * width, 16 * width}, 0.0, end);
+}
+
+} // namespace
+
+double reference_surface_G(int n, double T, double theta) {
+    // A(T, γ) sin γ = 2 e^{−T} w2 G̃(T sin γ, w2): the airlight arriving along the ray from the
+    // surface point at angle γ from the direction to the light (γ = 0: towards the light).
+    auto f = [=](double gamma) {
+        const double w2 = (kPi - gamma) / 2;
+        if (!(w2 > 0)) return 0.0;
+        return 2 * std::exp(-T) * ray_airlight(T * std::sin(gamma), w2) * azimuthal_kernel(n, theta, gamma);
+    };
+    // Where the ring of directions at γ meets the horizon (|π/2 − θ|, π − that), the lobe
+    // (θ, θ ± 1, 3, 10 widths 1/√n) and the near-light scale of A sin γ (1, 4, 16, 64 × 1/T).
+    const double edge = std::fabs(kPi / 2 - theta);
+    std::vector<double> breaks = {edge, kPi - edge};
+    if (n > 1) {
+        const double width = 1 / std::sqrt(double(n));
+        breaks.push_back(theta);
+        for (double k : {1.0, 3.0, 10.0}) {
+            breaks.push_back(theta - k * width);
+            breaks.push_back(theta + k * width);
+        }
+    }
+    if (T > 1)
+        for (double k : {1.0, 4.0, 16.0, 64.0}) breaks.push_back(k / T);
+    return surface_pieces(f, breaks, 0.0, kPi);
 }
 
 } // namespace scatterlut

@@ -28,3 +28,17 @@ namespace scatterlut {
 double reference_scaled_tail_hg(double u, double w, double g);
 
 } // namespace scatterlut
+
+namespace scatterlut {
+
+// G_n(T, θ) of Sun et al. 2005's surface terms (docs/PHYSICS.md §1.5; n = 1 the diffuse G0, n > 1
+// the Phong lobe of exponent n) by Boost.Math adaptive Gauss–Kronrod on the physical integral,
+// sharing no rule with the kernels:
+//   G_n = ∫_0^π 2 e^{−T} w2 G̃(T sin γ, w2) · K_n(θ, γ) dγ,   w2 = π/2 − γ/2,
+//   K_n = 2 ∫_0^π max(cos θ cos γ + sin θ sin γ cos φ, 0)^n dφ,
+// G̃ by reference_scaled_tail (the airlight along the infinite ray from the surface point at
+// angle γ from the light) and K_n by quadrature in the azimuth φ (not the kernels' recurrence),
+// with break points of its own. Relative accuracy ~1e-11 (Boost.Math exp_sinh along each ray, Gauss–Kronrod 31 over γ and φ).
+double reference_surface_G(int n, double T, double theta);
+
+} // namespace scatterlut

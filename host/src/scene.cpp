@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <initializer_list>
@@ -174,10 +175,48 @@ private:
     std::string source_;
 };
 
+// surfaces = { diffuse = …, phong_exponents = […], light_distance_m = [min, max] } (or a
+// [medium.surfaces] table): at least one of diffuse = true and a non-empty exponent list.
+SceneSurfaces read_surfaces(const Reader &rd, const toml::node &n, const std::string &path) {
+    if (!n.is_table()) rd.fail(n.source(), path, "expected a table { diffuse, phong_exponents, light_distance_m }");
+    const toml::table &t = *n.as_table();
+    rd.only_keys(t, path, {"diffuse", "phong_exponents", "light_distance_m"});
+    SceneSurfaces s;
+    s.line = static_cast<int>(t.source().begin.line);
+    s.diffuse = rd.boolean(t, "diffuse", path, false, false);
+    const std::string expect = "an integer Phong exponent in [1, " + std::to_string(kSceneMaxPhongExponent) + "]";
+    if (const toml::node *e = t.get("phong_exponents")) {
+        const std::string key = Reader::join(path, "phong_exponents");
+        const toml::array *a = e->as_array();
+        if (!a) rd.fail(e->source(), key, "expected an array of integer Phong exponents in [1, " +
+                                              std::to_string(kSceneMaxPhongExponent) + "]");
+        for (size_t i = 0; i < a->size(); ++i) {
+            const toml::node &x = *a->get(i);
+            const std::string at = key + "[" + std::to_string(i) + "]";
+            if (!x.is_integer()) rd.fail(x.source(), at, "expected " + expect);
+            const int64_t v = x.value<int64_t>().value_or(0);
+            if (v < 1 || v > kSceneMaxPhongExponent)
+                rd.fail(x.source(), at, "expected " + expect + ", got " + std::to_string(v));
+            if (std::find(s.phong_exponents.begin(), s.phong_exponents.end(), v) != s.phong_exponents.end())
+                rd.fail(x.source(), at, "expected exponents no other entry has, got " + std::to_string(v) + " twice");
+            s.phong_exponents.push_back(static_cast<int>(v));
+        }
+        std::sort(s.phong_exponents.begin(), s.phong_exponents.end());
+    }
+    if (!s.diffuse && s.phong_exponents.empty())
+        rd.fail(t.source(), Reader::join(path, "diffuse"),
+                "expected diffuse = true and/or a non-empty phong_exponents (surfaces that reflect nothing need no table)");
+    const toml::node *d = t.get("light_distance_m");
+    if (!d) rd.fail(t.source(), Reader::join(path, "light_distance_m"),
+                    "expected [min, max] in m, the distance from a lit surface point to a light (missing)");
+    s.light_distance_m = rd.range(*d, Reader::join(path, "light_distance_m"));
+    return s;
+}
+
 SceneMedium read_medium(const Reader &rd, const toml::table &t, const std::string &path, double relative_error) {
     rd.only_keys(t, path,
                  {"name", "sigma_s_per_m", "sigma_a_per_m", "phase_g", "viewer_inside", "thick", "thickness_m",
-                  "relative_error"});
+                  "relative_error", "surfaces"});
     SceneMedium m;
     m.line = static_cast<int>(t.source().begin.line);
     m.name = rd.string(t, "name", path, true, "");
@@ -200,6 +239,13 @@ SceneMedium read_medium(const Reader &rd, const toml::table &t, const std::strin
         const char *key = m.has_thickness ? "thickness_m" : "thick";
         rd.fail(t.get(key)->source(), Reader::join(path, key),
                 "expected no such key: it applies only to media seen from outside (viewer_inside = false)");
+    }
+    if (const toml::node *n = t.get("surfaces")) {
+        if (!m.viewer_inside)
+            rd.fail(n->source(), Reader::join(path, "surfaces"),
+                    "expected no such key: lit surfaces apply only to a medium the viewer is inside (viewer_inside = true)");
+        m.surfaces = read_surfaces(rd, *n, Reader::join(path, "surfaces"));
+        m.has_surfaces = true;
     }
     if (!m.viewer_inside && !m.thick && !m.has_thickness)
         rd.fail(t.source(), Reader::join(path, "thickness_m"),
@@ -277,6 +323,10 @@ void check_optical_depths(const Reader &rd, const toml::table &root, const Scene
         if (m.sigma_s_per_m > 0.0 && m.has_thickness && too_deep(m.sigma_t_per_m(), m.thickness_m.max))
             rd.fail(root["medium"][i]["thickness_m"].node()->source(), "medium[" + std::to_string(i) + "].thickness_m",
                     what(m, m.thickness_m.max));
+        if (m.sigma_s_per_m > 0.0 && m.has_surfaces && too_deep(m.sigma_t_per_m(), m.surfaces.light_distance_m.max))
+            rd.fail(root["medium"][i]["surfaces"]["light_distance_m"].node()->source(),
+                    "medium[" + std::to_string(i) + "].surfaces.light_distance_m",
+                    what(m, m.surfaces.light_distance_m.max));
     }
     for (size_t i = 0; i < s.lights.size(); ++i) {
         const SceneLight &l = s.lights[i];

@@ -32,9 +32,30 @@ inline constexpr double kSceneMinTableMiB = 0.01;
 // sigma_t times a light's largest distance or a slab's largest thickness: beyond it the
 // light is attenuated by e^{-1e4}, far below double precision's smallest number.
 inline constexpr double kSceneMaxOpticalDepth = 1e4;
+// The largest Phong exponent a scene's surfaces may name: the lobe of exponent n has the
+// angular width 1/sqrt(n) (0.03 rad at 1000), which a table's theta axis resolves with a few
+// hundred nodes; narrower lobes would need thousands (the runtime's exact quadrature takes
+// any n up to kSurfaceMaxExponent, scatterlut/surface.hpp).
+inline constexpr int kSceneMaxPhongExponent = 1000;
 
 struct Range {
     double min = 0, max = 0;
+};
+
+// Lit surfaces inside a medium the viewer is in (Sun et al. 2005's surface terms,
+// docs/PHYSICS.md §1.5): a street, walls. Each exponent gets its own table of G_n(T, θ):
+// exponent 1 the diffuse G0 (Lambertian surfaces), n > 1 a Phong lobe of exponent n.
+struct SceneSurfaces {
+    bool diffuse = false;               // Lambertian surfaces (the diffuse table, exponent 1)
+    std::vector<int> phong_exponents;   // distinct, ascending, each in [1, kSceneMaxPhongExponent]
+    Range light_distance_m;             // distance from a lit surface point to a point light, m
+    int line = 0;                       // where the surfaces table starts (for messages)
+    // The exponents whose tables these surfaces need, ascending (1 for diffuse surfaces).
+    std::vector<int> exponents() const {
+        std::vector<int> e = phong_exponents;
+        if (diffuse && (e.empty() || e.front() != 1)) e.insert(e.begin(), 1);
+        return e;
+    }
 };
 
 struct SceneMedium {
@@ -55,6 +76,9 @@ struct SceneMedium {
     bool has_thickness = false;
     Range thickness_m;
     double relative_error = 0; // accepted relative error on its radiance (default: the scene's)
+    // Lit surfaces inside it (viewer_inside media only); has_surfaces false: none (the key absent).
+    bool has_surfaces = false;
+    SceneSurfaces surfaces;
     int line = 0; // where the [[medium]] table starts (for messages)
     // Extinction, 1/m: the largest channel's (a grey medium's σ_s + σ_a, bit for bit), the
     // smallest channel's, and channel c's.

@@ -106,6 +106,8 @@ void print_text(const ScenePlan &plan) {
         std::printf("\n%s: %s, %.1f KiB\n", t.name(), counts_text(c.counts, " x ").c_str(),
                     static_cast<double>(c.bytes) / 1024.0);
         if (t.kind->per_phase()) std::printf("  phase_g = %.15g (Henyey-Greenstein)\n", t.phase_g);
+        if (t.kind->per_exponent())
+            std::printf("  exponent = %d (%s)\n", t.exponent, t.exponent == 1 ? "diffuse surfaces" : "Phong lobe");
         for (const auto &r : t.requested_by)
             std::printf("  asked for by medium '%s' with light '%s': %s\n", r.medium.c_str(), r.light.c_str(),
                         r.need.c_str());
@@ -143,6 +145,7 @@ nlohmann::json to_json(const ScenePlan &plan) {
         e["kind"] = t.kind->name();
         e["file_stem"] = t.name();
         e["phase_g"] = t.phase_g; // Henyey–Greenstein g of the table (0: isotropic)
+        if (t.kind->per_exponent()) e["exponent"] = t.exponent; // surfaces: 1 diffuse, n > 1 Phong
         json req = json::array();
         for (const auto &r : t.requested_by) req.push_back({{"medium", r.medium}, {"light", r.light}, {"need", r.need}});
         e["requested_by"] = req;

@@ -68,29 +68,12 @@ void evaluate(const GIntegrand &f, Panel &p) {
     p.error = std::fabs(half * (kronrod - gauss));
 }
 
-// The break points of G_n's integrand in γ ∈ [0, π] (docs/PHYSICS.md §1.5).
+// The break points of G_n's integrand in γ ∈ [0, π] (kernels/slut_surface.h, shared with the
+// generator's fixed rule).
 std::vector<double> break_points(int n, double T, double theta) {
-    std::vector<double> b = {0.0, SLUT_PI};
-    double g1 = std::fabs(0.5 * SLUT_PI - theta);
-    b.push_back(g1);
-    b.push_back(SLUT_PI - g1);
-    if (n > 1) {
-        double width = 1.0 / std::sqrt(static_cast<double>(n));
-        for (double k : {0.0, -4.0, 4.0, -12.0, 12.0}) b.push_back(theta + k * width);
-    }
-    if (T > 1.0) { // A sin γ varies on the scale 1/T near γ = 0
-        b.push_back(1.0 / T);
-        b.push_back(8.0 / T);
-    }
-    std::vector<double> kept;
-    for (double x : b)
-        if (x >= 0.0 && x <= SLUT_PI) kept.push_back(x);
-    std::sort(kept.begin(), kept.end());
-    std::vector<double> out;
-    for (double x : kept)
-        if (out.empty() || x - out.back() > 1e-12) out.push_back(x);
-    if (out.back() < SLUT_PI) out.push_back(SLUT_PI);
-    return out;
+    double b[SLUT_SURFACE_MAX_BREAKS];
+    const int count = slut_surface_break_points(n, T, theta, b);
+    return std::vector<double>(b, b + count);
 }
 
 } // namespace

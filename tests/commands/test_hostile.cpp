@@ -93,14 +93,27 @@ std::string tmp_dir(const std::string &tag) {
     return d;
 }
 
-// A small airlight-only set (the fog street scene at 32 x 16 nodes): quick to write and to validate.
-const char *kSmallSet = "--scene " SLUT_SOURCE_DIR "/examples/scenes/fog_street.toml --n-u 32 --n-w 16 --format both";
+// The fog street scene's airlight part (examples/scenes/fog_street.toml without its lit
+// surfaces, whose surface tables these tests do not need), written once.
+const std::string &airlight_street_scene() {
+    static const std::string path = [] {
+        const std::string p = slut_test::temp_stem("hostile_street") + ".toml";
+        std::ofstream(p) << "name = \"fog street\"\n[accuracy]\nrelative_error = 0.005\n[[medium]]\nname = \"fog\"\n"
+                            "sigma_s_per_m = 0.05\nsigma_a_per_m = 0.005\nviewer_inside = true\n[[light]]\nname = \"street lamps\"\n"
+                            "type = \"point\"\nintensity_W_per_sr = 300\ndistance_m = [2, 80]\n";
+        return p;
+    }();
+    return path;
+}
+
+// A small airlight-only set (that scene at 32 x 16 nodes): quick to write and to validate.
+const std::string kSmallSet = "--scene " + airlight_street_scene() + " --n-u 32 --n-w 16 --format both";
 
 // The default airlight table (its declared accuracy is the one users see), generated once.
 const std::string &default_airlight() {
     static const std::string path = [] {
         const std::string d = tmp_dir("default");
-        const Bounded g = run_bounded("generate --scene " SLUT_SOURCE_DIR "/examples/scenes/fog_street.toml --out " + d +
+        const Bounded g = run_bounded("generate --scene " + airlight_street_scene() + " --out " + d +
                                       " --n-u 256 --n-w 128 --format bin");
         EXPECT_EQ(g.exit_code, 0) << g.err;
         return d + "/airlight_F.slut";

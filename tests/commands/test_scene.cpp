@@ -46,6 +46,13 @@ std::set<std::string> planned_kinds(const nlohmann::json &plan) {
     return kinds;
 }
 
+// The file stems of the planned tables (per-phase and per-exponent kinds: one per g / exponent).
+std::set<std::string> planned_stems(const nlohmann::json &plan) {
+    std::set<std::string> stems;
+    for (const auto &t : plan.at("tables")) stems.insert(t.at("file_stem").get<std::string>());
+    return stems;
+}
+
 nlohmann::json plan_json(const std::string &args) {
     const RunResult r = slut_test::run_scatterlut("plan " + args + " --json");
     EXPECT_EQ(r.exit_code, 0) << r.out;
@@ -53,13 +60,13 @@ nlohmann::json plan_json(const std::string &args) {
 }
 
 // ------------------------------------------------------------------ the examples' plans
-// The acceptance list: which tables each example scene calls for, exactly.
+// The acceptance list: which tables (file stems) each example scene calls for, exactly.
 struct ExamplePlan {
     const char *file;
-    std::set<std::string> kinds;
+    std::set<std::string> stems;
 };
 const ExamplePlan kExamples[] = {
-    {"fog_street.toml", {"airlight_F"}},
+    {"fog_street.toml", {"airlight_F", "surface_G0", "surface_G50"}},
     {"candle_wax.toml", {"near_light_E3"}},
     {"smoke_slab.toml", {"near_light_E4"}},
     {"ocean_sun.toml", {}},
@@ -69,8 +76,8 @@ const ExamplePlan kExamples[] = {
 TEST(ScenePlan, ExamplesListExactlyTheirTables) {
     for (const auto &e : kExamples) {
         const nlohmann::json plan = plan_json("--scene " + kScenes + e.file);
-        EXPECT_EQ(planned_kinds(plan), e.kinds) << e.file;
-        EXPECT_EQ(plan.at("tables").size(), e.kinds.size()) << e.file; // one table per kind
+        EXPECT_EQ(planned_stems(plan), e.stems) << e.file;
+        EXPECT_EQ(plan.at("tables").size(), e.stems.size()) << e.file; // one table per file stem
         for (const auto &t : plan.at("tables")) {
             EXPECT_FALSE(t.at("requested_by").empty()) << e.file;
             EXPECT_TRUE(t.at("reached").get<bool>()) << e.file << ": " << t.at("verdict");
@@ -106,7 +113,7 @@ TEST(SceneGenerate, ExamplesValidateAtThePredictedError) {
         std::filesystem::remove_all(dir);
         const RunResult gen = slut_test::run_scatterlut("generate --scene " + kScenes + e.file + " --out " + dir);
         ASSERT_EQ(gen.exit_code, 0) << gen.out;
-        if (e.kinds.empty()) {
+        if (e.stems.empty()) {
             EXPECT_FALSE(std::filesystem::exists(dir)) << e.file << ": nothing to write, nothing written";
             continue;
         }
@@ -125,7 +132,7 @@ TEST(SceneGenerate, ExamplesValidateAtThePredictedError) {
             EXPECT_LE(t.accuracy.sampling_max_rel, std::stod(t.extra.at("plan.target_rel"))) << f;
             EXPECT_EQ(t.extra.at("plan.reached"), "true") << f;
         }
-        EXPECT_EQ(stems, e.kinds) << e.file;
+        EXPECT_EQ(stems, e.stems) << e.file;
         const RunResult v = slut_test::run_scatterlut("validate" + args);
         EXPECT_EQ(v.exit_code, 0) << v.out;
         std::filesystem::remove_all(dir);
@@ -279,6 +286,26 @@ const BadScene kBadScenes[] = {
      "medium[0].sigma_a_per_m"},
     {"rgb channel negative", "[[medium]]\nname = \"fog\"\nsigma_s_per_m = [0.1, -0.2, 0.3]\nsigma_a_per_m = 0\nviewer_inside = true\n", 3,
      "medium[0].sigma_s_per_m[1]"},
+    // Lit surfaces ([medium.surfaces]): only inside a medium the viewer is in, integer exponents in
+    // [1, 1000], distinct, something to reflect, a light distance range.
+    {"surfaces seen from outside", "[[medium]]\nname = \"wax\"\nsigma_s_per_m = 1\nsigma_a_per_m = 0\nviewer_inside = false\n"
+     "thick = true\nsurfaces = { diffuse = true, light_distance_m = [1, 2] }\n", 7, "medium[0].surfaces"},
+    {"Phong exponent 0", "[[medium]]\nname = \"fog\"\nsigma_s_per_m = 0.1\nsigma_a_per_m = 0\nviewer_inside = true\n"
+     "[medium.surfaces]\nphong_exponents = [20, 0]\nlight_distance_m = [1, 2]\n", 7, "medium[0].surfaces.phong_exponents[1]"},
+    {"Phong exponent 1001", "[[medium]]\nname = \"fog\"\nsigma_s_per_m = 0.1\nsigma_a_per_m = 0\nviewer_inside = true\n"
+     "[medium.surfaces]\nphong_exponents = [1001]\nlight_distance_m = [1, 2]\n", 7, "medium[0].surfaces.phong_exponents[0]"},
+    {"Phong exponent not an integer", "[[medium]]\nname = \"fog\"\nsigma_s_per_m = 0.1\nsigma_a_per_m = 0\nviewer_inside = true\n"
+     "[medium.surfaces]\nphong_exponents = [20.5]\nlight_distance_m = [1, 2]\n", 7, "medium[0].surfaces.phong_exponents[0]"},
+    {"Phong exponent twice", "[[medium]]\nname = \"fog\"\nsigma_s_per_m = 0.1\nsigma_a_per_m = 0\nviewer_inside = true\n"
+     "[medium.surfaces]\nphong_exponents = [20, 20]\nlight_distance_m = [1, 2]\n", 7, "medium[0].surfaces.phong_exponents[1]"},
+    {"surfaces reflecting nothing", "[[medium]]\nname = \"fog\"\nsigma_s_per_m = 0.1\nsigma_a_per_m = 0\nviewer_inside = true\n"
+     "[medium.surfaces]\ndiffuse = false\nlight_distance_m = [1, 2]\n", 6, "medium[0].surfaces.diffuse"},
+    {"surfaces without distances", "[[medium]]\nname = \"fog\"\nsigma_s_per_m = 0.1\nsigma_a_per_m = 0\nviewer_inside = true\n"
+     "[medium.surfaces]\ndiffuse = true\n", 6, "medium[0].surfaces.light_distance_m"},
+    {"surfaces unknown key", "[[medium]]\nname = \"fog\"\nsigma_s_per_m = 0.1\nsigma_a_per_m = 0\nviewer_inside = true\n"
+     "[medium.surfaces]\ndiffuse = true\nspecular = true\nlight_distance_m = [1, 2]\n", 8, "medium[0].surfaces.specular"},
+    {"surfaces too deep", "[[medium]]\nname = \"fog\"\nsigma_s_per_m = 10\nsigma_a_per_m = 0\nviewer_inside = true\n"
+     "[medium.surfaces]\ndiffuse = true\nlight_distance_m = [1, 2000]\n", 8, "medium[0].surfaces.light_distance_m"},
 };
 
 TEST(SceneErrors, LineNumberedExit2NothingWritten) {
@@ -358,6 +385,40 @@ TEST(SceneErrors, MessageNamesFileLineColumnKey) {
     } catch (const scatterlut::SceneError &e) {
         EXPECT_EQ(std::string(e.what()).rfind("s.toml:3:22: key 'view.max_view_angle_deg': expected", 0), 0u) << e.what();
     }
+}
+
+// ------------------------------------------------------------------ lit surfaces
+// [medium.surfaces] and its inline form parse alike; the planner asks one surface table per
+// exponent (1: the diffuse G0, file stem surface_G0; n: surface_G<n>) over T = sigma_t*D up to
+// the densest channel's sigma_t times the largest light distance, and none without surfaces.
+TEST(SceneSurfaces, OneTablePerExponentOverTheScenesT) {
+    const std::string light = "[[light]]\nname = \"lamp\"\ntype = \"point\"\nintensity_W_per_sr = 1\ndistance_m = [1, 9]\n";
+    const std::string table_form = std::string(kGoodMedium) +
+                                   "[medium.surfaces]\ndiffuse = true\nphong_exponents = [200, 20]\nlight_distance_m = [0.5, 30]\n";
+    const std::string inline_form =
+        std::string(kGoodMedium) + "surfaces = { diffuse = true, phong_exponents = [20, 200], light_distance_m = [0.5, 30] }\n";
+    for (const std::string &text : {table_form, inline_form}) {
+        const scatterlut::Scene s = scatterlut::parse_scene(text + light, "surfaces.toml");
+        ASSERT_TRUE(s.media[0].has_surfaces);
+        EXPECT_EQ(s.media[0].surfaces.exponents(), (std::vector<int>{1, 20, 200}));
+        const scatterlut::ScenePlan p = scatterlut::derive_plan(s, scatterlut::Storage::F32);
+        std::vector<std::string> stems;
+        for (const auto &t : p.tables)
+            if (t.exponent > 0) {
+                stems.push_back(t.name());
+                EXPECT_EQ(t.table.kind, "") << "derived, not generated";
+                EXPECT_EQ(t.kind->name(), std::string("surface_G"));
+                EXPECT_DOUBLE_EQ(t.target_rel, 0.01);
+                ASSERT_EQ(t.requested_by.size(), 1u);
+                EXPECT_NE(t.requested_by[0].need.find("up to 3.3"), std::string::npos) << t.requested_by[0].need; // 0.11 * 30
+            }
+        EXPECT_EQ(stems, (std::vector<std::string>{"surface_G0", "surface_G20", "surface_G200"}));
+    }
+    // Without surfaces: no surface table.
+    const scatterlut::ScenePlan none = scatterlut::derive_plan(scatterlut::parse_scene(std::string(kGoodMedium) + light, "s.toml"),
+                                                               scatterlut::Storage::F32);
+    for (const auto &t : none.tables) EXPECT_EQ(t.exponent, 0) << t.name();
+    EXPECT_FALSE(scatterlut::parse_scene(kGoodMedium, "s.toml").media[0].has_surfaces);
 }
 
 // ------------------------------------------------------------------ the planner, no device

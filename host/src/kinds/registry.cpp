@@ -11,11 +11,13 @@ const TableKind &near_light_slab_table_kind();
 const TableKind &airlight_hg_table_kind();
 const TableKind &near_light_thick_hg_table_kind();
 const TableKind &near_light_slab_hg_table_kind();
+const TableKind &surface_table_kind();
 
 const std::vector<const TableKind *> &table_kinds() {
     static const std::vector<const TableKind *> kinds = {&airlight_table_kind(), &near_light_thick_table_kind(),
                                                          &near_light_slab_table_kind(), &airlight_hg_table_kind(),
-                                                         &near_light_thick_hg_table_kind(), &near_light_slab_hg_table_kind()};
+                                                         &near_light_thick_hg_table_kind(), &near_light_slab_hg_table_kind(),
+                                                         &surface_table_kind()};
     return kinds;
 }
 

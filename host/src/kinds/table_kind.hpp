@@ -76,6 +76,11 @@ public:
     // Whether the kind makes one table per Henyey–Greenstein g (the planner then calls
     // add_demand with the media of one g ≠ 0 at a time, each g its own table and file stem).
     virtual bool per_phase() const { return false; }
+    // Whether the kind makes one table per exponent of the scene's lit surfaces
+    // (SceneSurfaces::exponents(): 1 for diffuse surfaces, each Phong exponent): the planner
+    // then sets PlannedTable::exponent and calls add_demand with the media whose surfaces
+    // need that exponent, each exponent its own table and file stem.
+    virtual bool per_exponent() const { return false; }
     // `plan` text: why target_rel is what it is.
     virtual const char *target_reason() const = 0;
 

@@ -1,0 +1,241 @@
+// The surface tables of Sun et al. 2005 (docs/PHYSICS.md §1.5): G_n(T, θ) for lit surfaces inside
+// a medium the viewer is in, one table per exponent of the scene's surfaces (per_exponent():
+// n = 1 the diffuse G0, file stem surface_G0; n > 1 the Phong lobe, surface_G<n>). E_ss =
+// σ_s I0/(4π D) · G_1(T, θ_s) and S_n = σ_s I0/(4π D) · G_n(T, θ_r), T = σ_t D, D the distance
+// from the surface point to the light. Its generator: generate_surface.cpp
+// (kernels/surface_G.cl); its runtime: tables/src/surface_table.cpp (SurfaceTable).
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include "generate_surface.hpp"
+#include "kinds/derivation.hpp"
+#include "measure_util.hpp"
+#include "plan.hpp"
+#include "text_format.hpp"
+#include "scatterlut/surface.hpp"
+#include "scatterlut/surface_table.hpp"
+
+namespace scatterlut {
+
+const RuntimeKind &surface_runtime_kind(); // kinds/surface_runtime.cpp
+
+namespace {
+
+// What the scene's (medium, light) pairs of one exponent ask: T up to σ_t·D_max (σ_t of the
+// densest channel: the dimensionless table serves every channel below it), at the strictest error.
+struct Demand {
+    double T_max = 0;
+    double relative_error = HUGE_VAL;
+};
+
+// The queries of a table: surface points and lights, and the exponent they are for.
+struct SurfaceQueries {
+    std::vector<SurfaceQuery> queries;
+    int exponent = 1;
+};
+
+const SurfacePlan &plan_of(const std::any &plan) { return std::any_cast<const SurfacePlan &>(plan); }
+SurfacePlan &plan_of(std::any &plan) { return std::any_cast<SurfacePlan &>(plan); }
+const SurfaceQueries &queries_of(const RadianceQueries &q) { return std::any_cast<const SurfaceQueries &>(q.queries); }
+const SurfaceTable &runtime_of(const RuntimeSampler &s) { return dynamic_cast<const SamplerOf<SurfaceTable> &>(s).runtime; }
+
+double optical_distance(const SurfaceQuery &q) { return (q.sigma_s_per_m + q.sigma_a_per_m) * q.distance_m; }
+
+// E_ss (n = 1) or S_n (n > 1) in W/m², exact by quadrature and from the table.
+double exact_of(const SurfaceQuery &q, int n) {
+    return n == 1 ? surface_irradiance_exact(q) : surface_specular_exact(q, n);
+}
+double table_of(const SurfaceTable &table, const SurfaceQuery &q) {
+    return table.exponent() == 1 ? table.irradiance(q) : table.specular(q);
+}
+
+// The scene's surface queries for exponent n: for every medium whose surfaces need n and every
+// point light lighting it, in equal shares, each colour channel in turn: D log-uniform over
+// the surfaces' light_distance_m, θ uniform in [0, π] (θ_s for n = 1, θ_r for n > 1).
+std::vector<SurfaceQuery> sample_surface_queries(const Scene &scene, int n, size_t count, uint64_t seed) {
+    struct Pair {
+        const SceneMedium *medium;
+        const SceneLight *light;
+    };
+    std::vector<Pair> pairs;
+    for (const SceneMedium &m : scene.media) {
+        if (!m.has_surfaces || m.sigma_s_per_m == 0) continue;
+        const std::vector<int> e = m.surfaces.exponents();
+        if (std::find(e.begin(), e.end(), n) == e.end()) continue;
+        for (const SceneLight &l : scene.lights)
+            if (l.type == LightType::Point && Scene::lights_medium(l, m)) pairs.push_back({&m, &l});
+    }
+    std::vector<SurfaceQuery> out;
+    if (pairs.empty()) return out;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (size_t k = 0; k < count; ++k) {
+        const Pair &p = pairs[k % pairs.size()];
+        const size_t c = (k / pairs.size()) % 3;
+        const Range &d = p.medium->surfaces.light_distance_m;
+        SurfaceQuery q;
+        q.sigma_s_per_m = p.medium->sigma_s_rgb_per_m[c];
+        q.sigma_a_per_m = p.medium->sigma_a_rgb_per_m[c];
+        q.intensity_W_per_sr = p.light->intensity_W_per_sr;
+        q.distance_m = d.min * std::pow(d.max / d.min, unit(rng));
+        q.theta_rad = SLUT_PI * unit(rng);
+        out.push_back(q);
+    }
+    return out;
+}
+
+class SurfaceKind final : public TableKind {
+public:
+    const RuntimeKind &runtime() const override { return surface_runtime_kind(); }
+    bool per_exponent() const override { return true; }
+
+    void add_demand(const Scene &, const SceneMedium &m, const SceneLight &l, std::any &state,
+                    PlannedTable &t) const override {
+        if (t.exponent < 1 || !m.viewer_inside || !m.has_surfaces) return;
+        if (!state.has_value()) state = Demand{};
+        Demand &d = std::any_cast<Demand &>(state);
+        const double sigma_t = m.sigma_t_per_m(), d_hi = m.surfaces.light_distance_m.max;
+        d.T_max = std::max(d.T_max, sigma_t * d_hi);
+        d.relative_error = std::min(d.relative_error, m.relative_error);
+        t.requested_by.push_back(
+            {m.name, l.name,
+             std::string(t.exponent == 1 ? "diffuse surfaces" : "Phong surfaces, n = " + std::to_string(t.exponent)) +
+                 " lit from D <= " + fmt("%g", d_hi) + " m: T = sigma_t*D up to " + fmt("%.4g", sigma_t * d_hi) +
+                 (m.coloured ? " (the densest channel; the others lie below)" : "")});
+    }
+
+    void finish_plan(const Scene &, const std::any &state, const AirlightOverrides &, PlannedTable &t) const override {
+        const Demand &d = std::any_cast<const Demand &>(state);
+        SurfacePlan p;
+        p.exponent = t.exponent;
+        p.T_max = d.T_max;
+        if (p.T_max > kSurfaceGTMaxLimit) {
+            p.T_max = kSurfaceGTMaxLimit;
+            t.domain_notes.push_back("T_max lowered from " + fmt("%.4g", d.T_max) + " to " + fmt("%g", kSurfaceGTMaxLimit) +
+                                     ": beyond it e^-T underflows towards double's smallest numbers (the runtime "
+                                     "integrates exactly there)");
+        }
+        p.n_T = half_count(p.n_T);
+        p.n_theta = half_count(p.n_theta) | 1; // odd (needed for n = 1)
+        t.stem = surface_file_stem(t.exponent);
+        t.target_rel = d.relative_error;
+        t.plan = p;
+    }
+
+    const char *target_reason() const override {
+        return "the irradiance error: E_ss (or S_n) = sigma_s I0/(4 pi D) G(T, theta), one sample";
+    }
+
+    std::vector<int> counts(const std::any &plan) const override { return {plan_of(plan).n_T, plan_of(plan).n_theta}; }
+    void set_counts(std::any &plan, const std::vector<int> &c) const override {
+        SurfacePlan &p = plan_of(plan);
+        p.n_T = c[0];
+        p.n_theta = p.exponent == 1 ? std::max(3, c[1] | 1) : std::max(3, c[1]); // n = 1: a node at theta_s = pi/2
+    }
+    void set_storage(std::any &plan, Storage storage) const override { plan_of(plan).storage = storage; }
+    double integration_tolerance(const std::any &plan) const override { return plan_of(plan).integration_tolerance; }
+    double interpolation_ln_floor() const override { return -HUGE_VAL; }
+
+    Table layout(const std::any &plan, double tolerance) const override {
+        SurfacePlan p = plan_of(plan);
+        p.integration_tolerance = tolerance;
+        return make_surface_table_layout(p);
+    }
+    std::vector<double> integrate(Device &device, const Table &layout, double tolerance) const override {
+        return integrate_surface_G(device, layout, tolerance);
+    }
+    Table generate(Device &device, const std::any &plan, const Provenance &provenance,
+                   const std::function<void(double)> &) const override {
+        return generate_surface_table(device, plan_of(plan), provenance);
+    }
+
+    std::vector<NodeIndex> generator_nodes(const Table &table, int nodes, uint64_t seed) const override {
+        return surface_measurement_nodes(table, nodes, seed);
+    }
+    double integration_error(const RuntimeSampler &sampler, const std::vector<NodeIndex> &nodes,
+                             IntegrationReference reference) const override {
+        return measure_surface_integration(runtime_of(sampler), nodes, reference);
+    }
+    SamplingStats sampling_error(const RuntimeSampler &sampler, int points, uint64_t seed) const override {
+        return measure_surface_sampling(runtime_of(sampler), points, seed);
+    }
+
+    RadianceQueries radiance_queries(const Scene &scene, const std::any &plan, size_t count,
+                                     uint64_t seed) const override {
+        const SurfacePlan &p = plan_of(plan);
+        std::vector<SurfaceQuery> all = sample_surface_queries(scene, p.exponent, count, seed);
+        std::vector<double> exact(all.size());
+        parallel_for(static_cast<int>(all.size()),
+                     [&](int i) { exact[static_cast<size_t>(i)] = exact_of(all[static_cast<size_t>(i)], p.exponent); });
+        SurfaceQueries kept;
+        kept.exponent = p.exponent;
+        RadianceQueries s;
+        for (size_t i = 0; i < all.size(); ++i)
+            if (std::isfinite(exact[i]) && exact[i] > 0 && optical_distance(all[i]) <= p.T_max) {
+                kept.queries.push_back(all[i]);
+                s.exact.push_back(exact[i]);
+            }
+        s.queries = std::move(kept);
+        s.description = std::string(p.exponent == 1 ? "scattered irradiance E_ss (W/m^2)" : "specular lobe S_n (W/m^2)") +
+                        " of the scene's lit surfaces: every medium with surfaces and point light lighting it, every "
+                        "colour channel, the light at D log-uniform over surfaces.light_distance_m, theta uniform in "
+                        "[0, pi]; queries beyond the table's T_max left out";
+        return s;
+    }
+
+    std::vector<RuntimeMethod> runtime_methods(const Table &table, const RadianceQueries &qs) const override {
+        const SurfaceQueries *q = &queries_of(qs);
+        const int n = q->exponent;
+        std::vector<RuntimeMethod> m = {
+            {"exact", n == 1 ? "adaptive quadrature per call (surface_irradiance_exact)"
+                             : "adaptive quadrature per call (surface_specular_exact)",
+             true, [q, n](size_t k) { return exact_of(q->queries[k], n); }},
+            {"table", n == 1 ? "one sample of the planned table (SurfaceTable::irradiance)"
+                             : "one sample of the planned table (SurfaceTable::specular)",
+             false, table_radiance(table, qs)}};
+        if (n == 1) {
+            m.push_back({"no_extinction", "closed form without extinction (surface_irradiance_no_extinction)", false,
+                         [q](size_t k) { return surface_irradiance_no_extinction(q->queries[k]); }});
+            m.push_back({"attenuated", "the same times e^(-sigma_t D), an engine fudge", false, [q](size_t k) {
+                             return surface_irradiance_no_extinction(q->queries[k]) * std::exp(-optical_distance(q->queries[k]));
+                         }});
+        }
+        return m;
+    }
+    std::function<double(size_t)> table_radiance(const Table &table, const RadianceQueries &qs) const override {
+        auto surface = std::make_shared<SurfaceTable>(table);
+        const SurfaceQueries *q = &queries_of(qs);
+        return [surface, q](size_t k) { return table_of(*surface, q->queries[k]); };
+    }
+    std::function<double()> lookup_loop(const Table &table, const std::vector<double> &p, size_t count) const override {
+        auto surface = std::make_shared<SurfaceTable>(table);
+        const std::vector<double> *params = &p;
+        return [surface, params, count] {
+            const std::vector<double> &pp = *params;
+            double sum = 0;
+            for (size_t i = 0; i < count; ++i) sum += surface->G(pp[2 * i], pp[2 * i + 1]);
+            return sum;
+        };
+    }
+    const char *runtime_class() const override { return "SurfaceTable"; }
+    std::string methods_note() const override {
+        return " The surface tables answer irradiance (W/m^2), not radiance: E_ss, the airlight a surface point "
+               "receives over its hemisphere (Sun et al. 2005). no_extinction is its exact limit sigma_t -> 0 "
+               "(sigma_s I0/(2D) [cos theta_s + E(sin theta_s)], an upper bound otherwise); attenuated multiplies it "
+               "by e^(-sigma_t D), which ignores that scattered light reaches the surface over shorter paths. A Phong "
+               "table (exponent n > 1) answers S_n, the lobe-weighted incident airlight, which has no closed form here.";
+    }
+};
+
+} // namespace
+
+const TableKind &surface_table_kind() {
+    static const SurfaceKind kind;
+    return kind;
+}
+
+} // namespace scatterlut
