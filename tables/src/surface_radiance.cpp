@@ -3,6 +3,7 @@
 #include "require.hpp"
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 extern "C" {
@@ -64,9 +65,9 @@ SurfaceRadiance assemble(const SurfaceLighting &s, double sigma_s, double sigma_
 
 void check_channels(const Rgb &sigma_s, const Rgb &sigma_a) {
     for (int c = 0; c < 3; ++c)
-        require(finite_non_negative(sigma_s[c]) && finite_non_negative(sigma_a[c]),
-                "surface radiance: sigma_s and sigma_a must be finite and >= 0 in every channel (channel " +
-                    std::to_string(c) + ")");
+        if (!(finite_non_negative(sigma_s[c]) && finite_non_negative(sigma_a[c])))
+            throw std::invalid_argument("surface radiance: sigma_s and sigma_a must be finite and >= 0 in every "
+                                        "channel (channel " + std::to_string(c) + ")");
 }
 
 } // namespace
@@ -76,8 +77,9 @@ void check_surface_lighting(const SurfaceLighting &s, double sigma_s_per_m, doub
     require(finite3(s.point_m), "surface radiance: point_m must be finite");
     require(finite3(s.normal), "surface radiance: normal must be finite");
     const double n2 = s.normal[0] * s.normal[0] + s.normal[1] * s.normal[1] + s.normal[2] * s.normal[2];
-    require(std::fabs(n2 - 1.0) <= 2e-6, "surface radiance: normal must be a unit vector (|n|^2 = " +
-                                             std::to_string(n2) + ")");
+    if (!(std::fabs(n2 - 1.0) <= 2e-6)) // (the message built only on failure: this runs per query)
+        throw std::invalid_argument("surface radiance: normal must be a unit vector (|n|^2 = " + std::to_string(n2) +
+                                    ")");
     require(finite3(s.light_m), "surface radiance: light_m must be finite");
     require(finite3(s.viewer_m), "surface radiance: viewer_m must be finite");
     const slut_surface_geometry g = geometry(s);
@@ -90,9 +92,9 @@ void check_surface_lighting(const SurfaceLighting &s, double sigma_s_per_m, doub
     require(finite_non_negative(sigma_a_per_m), "surface radiance: sigma_a must be finite and >= 0");
     require(finite_non_negative(m.diffuse_albedo), "surface radiance: diffuse_albedo (k_d) must be finite and >= 0");
     require(finite_non_negative(m.specular_per_sr), "surface radiance: specular_per_sr (k_s) must be finite and >= 0");
-    require(m.phong_exponent >= 1 && m.phong_exponent <= kSurfaceMaxExponent,
-            "surface radiance: phong_exponent must lie in [1, " + std::to_string(kSurfaceMaxExponent) + "], not " +
-                std::to_string(m.phong_exponent));
+    if (!(m.phong_exponent >= 1 && m.phong_exponent <= kSurfaceMaxExponent))
+        throw std::invalid_argument("surface radiance: phong_exponent must lie in [1, " +
+                                    std::to_string(kSurfaceMaxExponent) + "], not " + std::to_string(m.phong_exponent));
 }
 
 SurfaceRadiance surface_radiance(const SurfaceTables &tables, const SurfaceLighting &s, double sigma_s_per_m,
@@ -101,9 +103,9 @@ SurfaceRadiance surface_radiance(const SurfaceTables &tables, const SurfaceLight
             "surface radiance: diffuse_albedo > 0 needs the diffuse (G0) table");
     require(m.specular_per_sr == 0.0 || tables.specular != nullptr,
             "surface radiance: specular_per_sr > 0 needs a specular table of the material's exponent");
-    require(m.specular_per_sr == 0.0 || m.phong_exponent == 1,
-            "surface radiance: the specular table is of exponent 1, the material's exponent is " +
-                std::to_string(m.phong_exponent));
+    if (!(m.specular_per_sr == 0.0 || m.phong_exponent == 1))
+        throw std::invalid_argument("surface radiance: the specular table is of exponent 1, the material's exponent is " +
+                                    std::to_string(m.phong_exponent));
     return assemble(s, sigma_s_per_m, sigma_a_per_m, m, [&](int exponent, double T, double theta) {
         return G_from(exponent == 1 && tables.diffuse ? *tables.diffuse : *tables.specular, exponent, T, theta);
     });

@@ -22,13 +22,14 @@ namespace scatterlut {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kTMax = 30.0;
-// The G0 table's accepted sampling error (tests/runtime/test_surface_table.cpp: 64 × 65 on
-// T ≤ 30, measured ≤ 5.6e-3): the scattered terms carry it, the direct terms are exact.
-constexpr double kTableRel = 1e-2;
+constexpr double kTMax = 10.0;
+// The accepted sampling error of the small G0 table below (24 × 25 on T ≤ 10: small, since
+// CTest runs each test in its own process, each filling the table by quadrature): the
+// scattered terms carry it, the direct terms are exact. Measured: the random test prints it.
+constexpr double kTableRel = 2e-2;
 
 const SurfaceTable &g0_table() {
-    static const SurfaceTable t(surface_G0_table_by_quadrature(kTMax, 64, 65));
+    static const SurfaceTable t(surface_G0_table_by_quadrature(kTMax, 24, 25));
     return t;
 }
 
@@ -72,6 +73,7 @@ TEST(SurfaceRadiance, TableAgainstExactOverRandomGeometries) {
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     double worst_diffuse = 0.0, worst_total = 0.0;
     const int cases = 300;
+    int used = 0;
     for (int k = 0; k < cases; ++k) {
         const double D = 0.5 * std::pow(60.0, unit(rng)); // 0.5 … 30 m
         const double cos_s = 2.0 * unit(rng) - 1.0, phi = 2.0 * kPi * unit(rng);
@@ -80,7 +82,7 @@ TEST(SurfaceRadiance, TableAgainstExactOverRandomGeometries) {
         const double sin_v = std::sqrt(1.0 - cos_v * cos_v);
         SurfaceLighting s = at_origin(D * sin_s * std::cos(phi), D * sin_s * std::sin(phi), D * cos_s,
                                       Dv * sin_v * std::cos(phi_v), Dv * sin_v * std::sin(phi_v), Dv * cos_v);
-        const double sigma_s = 0.5 * unit(rng), sigma_a = 0.2 * unit(rng);
+        const double sigma_s = 0.25 * unit(rng), sigma_a = 0.08 * unit(rng);
         if ((sigma_s + sigma_a) * D > kTMax) continue; // beyond the table: the exact fallback (tested below)
         const SurfaceMaterial m = material(0.6, 0.4);
         const SurfaceRadiance t = surface_radiance(tables(), s, sigma_s, sigma_a, m);
@@ -97,9 +99,12 @@ TEST(SurfaceRadiance, TableAgainstExactOverRandomGeometries) {
         EXPECT_LT(rel_t, kTableRel);
         worst_diffuse = std::max({worst_diffuse, rel_d, rel_s});
         worst_total = std::max(worst_total, rel_t);
+        ++used;
     }
-    std::printf("surface radiance, G0 table 64x65 vs exact: scattered terms max rel %.3e, total max rel %.3e\n",
-                worst_diffuse, worst_total);
+    EXPECT_GE(used, 250); // most geometries inside the table's T domain
+    std::printf("surface radiance, G0 table 24x25 (T <= %g) vs exact over %d geometries: scattered terms max rel "
+                "%.3e, total max rel %.3e\n",
+                kTMax, used, worst_diffuse, worst_total);
 }
 
 // Known angles: the light straight above (θ_s = 0), at 60° and below the horizon; the viewer
@@ -198,7 +203,7 @@ TEST(SurfaceRadiance, LightBelowTheHorizon) {
 // T beyond the table's axis: the front-end integrates exactly there (equal to the exact form).
 TEST(SurfaceRadiance, BeyondTheTableTheQuadrature) {
     SurfaceLighting s = at_origin(3.0, 1.0, 20.0, -2.0, 0.0, 4.0); // D ≈ 20.25 m
-    const double sigma_s = 2.0, sigma_a = 0.5;                      // T ≈ 50 > 30
+    const double sigma_s = 2.0, sigma_a = 0.5;                      // T ≈ 50 > 10
     const SurfaceRadiance t = surface_radiance(tables(), s, sigma_s, sigma_a, material(0.8, 0.3));
     const SurfaceRadiance e = surface_radiance_exact(s, sigma_s, sigma_a, material(0.8, 0.3));
     EXPECT_GT(e.diffuse_scattered, 0.0);
