@@ -24,6 +24,7 @@
 
 #include "slut_compat.h"
 #include "slut_airlight.h"
+#include "slut_surface_table.h" /* slut_ellint_2, slut_surface_G0_no_extinction */
 
 #ifndef SLUT_SHADER /* double only */
 
@@ -110,33 +111,6 @@ SLUT_FN double slut_surface_integrand(int n, double optical_distance, double the
     double k = slut_surface_kernel(n, theta, gamma);
     if (k <= 0.0) return 0.0;
     return slut_surface_incident_sin(optical_distance, gamma) * k;
-}
-
-/* Complete elliptic integral of the second kind E(k) = ∫_0^{π/2} √(1 − k² sin²φ) dφ from
- * k' = √(1 − k²) (given, so that k → 1 keeps its precision), by the arithmetic–geometric mean:
- * E = π/(2 M(1, k')) · (1 − Σ_{j≥0} 2^{j−1} c_j²), c_0 = k, c_{j+1} = (a_j − b_j)/2.
- * E(1) = 1 (k' = 0) is returned as such. ~1e-16 relative (tests: ≤ 1e-14 against Boost's ellint_2). */
-SLUT_FN double slut_ellint_2(double k, double k_comp) {
-    if (k_comp <= 0.0) return 1.0;
-    double a = 1.0, b = k_comp, sum = 0.5 * k * k, power = 0.5;
-    for (int j = 0; j < 64; ++j) {
-        double c = 0.5 * (a - b);
-        double a_next = 0.5 * (a + b);
-        b = sqrt(a * b);
-        a = a_next;
-        power *= 2.0;
-        sum += power * c * c;
-        /* Quadratic convergence: the next c would be ~c²/(4a) < 1e-18, whose term is negligible.
-         * (Iterating on would add 2^j times the rounding residue of a − b.) */
-        if (fabs(c) < 1e-9 * a) break;
-    }
-    return SLUT_SURFACE_PI / (2.0 * a) * (1.0 - sum);
-}
-
-/* G_1(0, θ_s) = 2π [cos θ_s + E(sin θ_s)]: the diffuse term without extinction (σ_t → 0). */
-SLUT_FN double slut_surface_G0_no_extinction(double theta_s) {
-    double c = cos(theta_s), s = sin(theta_s);
-    return 2.0 * SLUT_SURFACE_PI * (c + slut_ellint_2(s, fabs(c)));
 }
 
 #endif /* !SLUT_SHADER */

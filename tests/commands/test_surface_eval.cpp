@@ -2,7 +2,9 @@
 // the built executable without tables: "surface" (E_ss) and "surface_specular" (S_n) answer
 // "exact" against the mpmath values of tests/reference/surface_ref.json, "table": null (no
 // surface table kind yet), the direct term and, for "surface", the no-extinction bound; bad
-// input is an error line naming the field.
+// input is an error line naming the field. With --table of saved surface_G tables (filled by
+// quadrature, scatterlut/surface_table.hpp) "table" answers from the table of the query's
+// exponent (1 for "surface") where T = σ_t D lies in its domain, null otherwise.
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -11,6 +13,8 @@
 
 #include "cli_runner.hpp"
 #include "reference_data.hpp"
+#include "scatterlut/io.hpp"
+#include "scatterlut/surface_table.hpp"
 
 namespace {
 
@@ -103,6 +107,47 @@ TEST(SurfaceEval, LightBelowTheHorizonStillLitAndZeroWithoutScattering) {
     EXPECT_GT(lines[0].at("exact").get<double>(), 0.0);
     EXPECT_EQ(lines[0].at("direct").get<double>(), 0.0);
     EXPECT_EQ(lines[1].at("exact").get<double>(), 0.0);
+}
+
+
+TEST(SurfaceEval, TableAnswersFromTheTableOfTheQuerysExponent) {
+    // A Phong n = 20 table and a diffuse one, both on T ∈ [0, 30]; 48 × 49 nodes: the G_n
+    // tables' measured error at this size is below 1e-2 (tests/runtime/test_surface_table.cpp).
+    const std::string lobe = slut_test::temp_stem("surface_G_n20") + ".slut";
+    const std::string diffuse = slut_test::temp_stem("surface_G_n1") + ".slut";
+    scatterlut::save_binary(scatterlut::surface_G_table_by_quadrature(20, 30.0, 48, 49), lobe);
+    scatterlut::save_binary(scatterlut::surface_G_table_by_quadrature(1, 30.0, 32, 33), diffuse);
+    const auto query = [](const char *quantity, double distance_m, double theta, int exponent) {
+        nlohmann::json q = {{"quantity", quantity}, {"sigma_s", 0.3}, {"sigma_a", 0.1}, {"intensity", 50.0},
+                            {"distance", distance_m}};
+        if (exponent == 0) q["theta_s"] = theta;
+        else q["theta_r"] = theta, q["exponent"] = exponent;
+        return q.dump() + "\n";
+    };
+    std::string input;
+    const double thetas[] = {0.0, 0.05, 0.3, 1.5707963267948966, 3.141592653589793};
+    for (double theta : thetas) input += query("surface_specular", 20.0, theta, 20); // T = 8: the n = 20 table
+    input += query("surface_specular", 20.0, 0.3, 1);   // the diffuse table answers S_1
+    input += query("surface", 20.0, 0.3, 0);            // and E_ss
+    input += query("surface_specular", 20.0, 0.3, 21);  // no table of exponent 21: null
+    input += query("surface_specular", 100.0, 0.3, 20); // T = 40 > 30: null
+    const auto r = run_scatterlut("eval --table " + lobe + " --table " + diffuse, input);
+    std::remove(lobe.c_str());
+    std::remove(diffuse.c_str());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto lines = json_lines(r.out);
+    ASSERT_EQ(lines.size(), std::size(thetas) + 4);
+    for (size_t i = 0; i < std::size(thetas) + 2; ++i) {
+        const auto &a = lines[i];
+        ASSERT_TRUE(a.at("table").is_number() && a.at("exact").is_number()) << a.dump();
+        const double table = a.at("table").get<double>(), exact = a.at("exact").get<double>();
+        EXPECT_GT(table, 0.0) << a.dump();
+        EXPECT_NEAR(table / exact, 1.0, 1e-2) << a.dump();
+    }
+    for (size_t i = std::size(thetas) + 2; i < lines.size(); ++i) {
+        EXPECT_TRUE(lines[i].at("table").is_null()) << lines[i].dump();
+        EXPECT_TRUE(lines[i].at("exact").is_number()) << lines[i].dump();
+    }
 }
 
 } // namespace

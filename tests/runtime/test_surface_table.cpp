@@ -3,10 +3,14 @@
 // surface_G_exact; the ends of both axes (θ_s = 0, π/2, π; T = 0, tiny, T_max); E_ss through the
 // table against surface_irradiance_exact; bad tables and out-of-domain queries refused; eval's
 // "surface" answering "table" with --table of a saved surface_G file (null outside its T domain).
+// Then any Phong exponent n: the G_n tables (n = 1, 20, 200, 1000 on T ≤ 100) against surface_G_exact
+// at random off-node points (printing the measured maximum), their hard corners, the lobe scale's
+// bound at T = 0, the exponent recorded and checked on load.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <random>
 #include <stdexcept>
 
@@ -18,6 +22,10 @@
 
 #include "scatterlut/surface.hpp"
 #include "scatterlut/surface_table.hpp"
+
+extern "C" {
+#include "slut_surface_table.h"
+}
 
 namespace scatterlut {
 namespace {
@@ -168,6 +176,188 @@ TEST(SurfaceTable, EvalAnswersTableWithASavedFile) {
     }
     EXPECT_TRUE(lines[5].at("table").is_null()) << lines[5].dump();
     EXPECT_TRUE(lines[5].at("exact").is_number()) << lines[5].dump();
+}
+
+
+// --- Any Phong exponent n: G_n tables (surface_G_layout / surface_G_table_by_quadrature) ---------
+
+// The scale of a G_n table at T = 0 is the narrow-lobe form N_n(θ) (kernels/slut_surface_table.h):
+// G_n(0, θ)/N_n(θ) must stay within [e^{-0.2}, e^{kSurfaceGnMaxLnRatio}] for every n ≥ 2, which
+// is what SurfaceTable's load check of the stored ln ratio (≤ kSurfaceGnMaxLnRatio) relies on:
+// extinction only lowers G_n (G_n(T, θ) ≤ e^{−T} G_n(0, θ)). Measured: at most 1.156 (n = 2,
+// θ ≈ 0.95), at least 0.92 (n = 2, θ = 0).
+TEST(SurfaceGnTable, TheLobeScaleBoundsGnAtZeroExtinction) {
+    double lo = 1e300, hi = 0.0;
+    // n = 10000 at 7 points only (each quadrature at that n costs ~0.1 s).
+    for (int n : {2, 3, 5, 10, 20, 50, 200, 1000, 10000}) {
+        const double width = 1.0 / std::sqrt(n + 1.0);
+        for (int k = 0; k <= 24; k += n > 1000 ? 4 : 1) {
+            // Half the points within 3 lobe widths of θ = 0, half over the rest of [0, π].
+            const double theta = k <= 12 ? 3.0 * width * k / 12.0 : 3.0 * width + (kPi - 3.0 * width) * (k - 12) / 12.0;
+            const double ratio = surface_G_exact(n, 0.0, theta) / slut_surface_G_scale(n, 0.0, theta);
+            lo = std::min(lo, ratio);
+            hi = std::max(hi, ratio);
+            EXPECT_LE(std::log(ratio), kSurfaceGnMaxLnRatio) << "n=" << n << " theta=" << theta;
+            EXPECT_GE(std::log(ratio), -0.2) << "n=" << n << " theta=" << theta;
+        }
+    }
+    std::printf("G_n(0, theta)/N_n(theta), n = 2 ... 10000: in [%.4f, %.4f]\n", lo, hi);
+}
+
+struct GnCase {
+    int exponent;
+    int T_count, theta_count;
+};
+
+// The G_n tables the precision test measures, on T ∈ [0, kGnTMax], and the accepted relative
+// sampling error: a bound from measurement (the test prints the measured maximum).
+constexpr double kGnTMax = 100.0;
+constexpr double kGnAcceptedRel = 1e-2;
+// Measured (this test's output): n = 1: 7.5e-3 at 48 × 97 (T → 0 near θ_s = π; 1.3e-2 at 48 × 49, at
+// the kink θ_s = π/2 for large T); n = 20, 200, 1000: 2.9e-3, 2.7e-3, 3.7e-3 at 48 × 49.
+constexpr GnCase kGnCases[] = {{1, 48, 97}, {20, 48, 49}, {200, 48, 49}, {1000, 48, 49}};
+
+const SurfaceTable &gn_table(const GnCase &c) {
+    static std::map<int, SurfaceTable> tables;
+    auto it = tables.find(c.exponent);
+    if (it == tables.end())
+        it = tables.emplace(c.exponent, SurfaceTable(surface_G_table_by_quadrature(c.exponent, kGnTMax, c.T_count,
+                                                                                    c.theta_count)))
+                 .first;
+    return it->second;
+}
+
+// A point uniform in an axis's own warp (log1p or linear): as densely near 0 as the nodes are.
+double uniform_in_warp(const slut_axis &a, double unit) {
+    return a.warp == SLUT_WARP_LOG1P ? a.scale * std::expm1(unit * std::log1p((a.max - a.min) / a.scale))
+                                     : a.min + unit * (a.max - a.min);
+}
+
+TEST(SurfaceGnTable, RandomPointsWithinTheAcceptedError) {
+    for (const GnCase &c : kGnCases) {
+        const SurfaceTable &t = gn_table(c);
+        ASSERT_EQ(t.exponent(), c.exponent);
+        std::mt19937_64 rng(20261202 + c.exponent);
+        std::uniform_real_distribution<double> unit(0.0, 1.0);
+        double worst = 0.0, worst_T = 0.0, worst_theta = 0.0;
+        const int points = 400;
+        for (int k = 0; k < points; ++k) {
+            const double T = uniform_in_warp(t.table().axes[0].map, unit(rng));
+            // Every other point uniform in θ itself (the far lobe), the others in the axis's warp (near 0).
+            const double theta = k % 2 ? kPi * unit(rng) : uniform_in_warp(t.table().axes[1].map, unit(rng));
+            const double exact = surface_G_exact(c.exponent, T, theta);
+            const double got = t.G(T, theta);
+            ASSERT_TRUE(std::isfinite(got) && got > 0.0) << "n=" << c.exponent << " T=" << T << " theta=" << theta;
+            const double rel = std::fabs(got / exact - 1.0);
+            if (rel > worst) worst = rel, worst_T = T, worst_theta = theta;
+            EXPECT_LT(rel, kGnAcceptedRel) << "n=" << c.exponent << " T=" << T << " theta=" << theta;
+        }
+        std::printf("surface_G n=%d %dx%d, T <= %g: sampling error max %.3e (T=%.4g, theta=%.4g) over %d points\n",
+                    c.exponent, c.T_count, c.theta_count, kGnTMax, worst, worst_T, worst_theta, points);
+    }
+}
+
+TEST(SurfaceGnTable, HardCasesNeverNaNNorNegative) {
+    const double thetas[] = {0.0, 1e-12, 1e-6, 1e-3, kPi / 2, kPi - 1e-6, kPi - 1e-12, kPi};
+    const double Ts[] = {0.0, 1e-12, 1e-6, 1e-3, 1.0, 30.0, kGnTMax - 1e-9, kGnTMax};
+    for (const GnCase &c : kGnCases) {
+        const SurfaceTable &t = gn_table(c);
+        for (double T : Ts)
+            for (double theta : thetas) {
+                const double got = t.G(T, theta);
+                ASSERT_TRUE(std::isfinite(got) && got > 0.0) << "n=" << c.exponent << " T=" << T << " theta=" << theta;
+                EXPECT_NEAR(got / surface_G_exact(c.exponent, T, theta), 1.0, kGnAcceptedRel)
+                    << "n=" << c.exponent << " T=" << T << " theta=" << theta;
+            }
+    }
+}
+
+TEST(SurfaceGnTable, AtNodesTheQuadratureAndTheExponentRecorded) {
+    const Table small = surface_G_table_by_quadrature(20, 5.0, 5, 6);
+    EXPECT_EQ(small.extra.at(kSurfaceExponentKey), "20");
+    EXPECT_EQ(small.axes[1].name, "theta_r");
+    EXPECT_EQ(small.axes[1].map.warp, SLUT_WARP_LOG1P);
+    const SurfaceTable t(small);
+    EXPECT_EQ(t.exponent(), 20);
+    for (int j = 0; j < 6; ++j)
+        for (int i = 0; i < 5; ++i) {
+            const double T = slut_axis_node(&small.axes[0].map, i);
+            const double theta = slut_axis_node(&small.axes[1].map, j);
+            EXPECT_NEAR(t.G(T, theta) / surface_G_exact(20, T, theta), 1.0, 1e-12) << i << "," << j;
+        }
+    // The diffuse functions are the exponent-1 case, value for value.
+    const Table g0 = surface_G0_table_by_quadrature(5.0, 5, 7), g1 = surface_G_table_by_quadrature(1, 5.0, 5, 7);
+    EXPECT_EQ(g0.values, g1.values);
+    EXPECT_EQ(g0.extra.at(kSurfaceExponentKey), "1");
+    EXPECT_EQ(table_surface_exponent(g0), 1);
+}
+
+TEST(SurfaceGnTable, SpecularAgainstExactAndTheDiffuseCallsRefused) {
+    const SurfaceTable &t = gn_table(kGnCases[2]); // n = 200
+    SurfaceQuery q;
+    q.sigma_s_per_m = 0.3;
+    q.sigma_a_per_m = 0.05;
+    q.intensity_W_per_sr = 100.0;
+    q.distance_m = 7.0;
+    for (double theta : {0.0, 0.01, 0.1, 1.0, kPi / 2, 2.5, kPi}) {
+        q.theta_rad = theta;
+        EXPECT_NEAR(t.specular(q) / surface_specular_exact(q, 200), 1.0, kGnAcceptedRel) << theta;
+    }
+    EXPECT_THROW(t.irradiance(q), std::invalid_argument); // E_ss needs exponent 1
+    EXPECT_THROW(t.G0(1.0, 1.0), std::invalid_argument);
+    q.distance_m = 1000.0; // T = 350 > 100
+    EXPECT_THROW(t.specular(q), std::invalid_argument);
+    // The exponent-1 table answers S_1 = σ_s I0/(4π D) G_1(T, θ_r) too.
+    const SurfaceTable &d = table_64x65();
+    q.distance_m = 7.0;
+    q.theta_rad = 1.0;
+    EXPECT_NEAR(d.specular(q) / surface_specular_exact(q, 1), 1.0, kAcceptedRel);
+}
+
+TEST(SurfaceGnTable, RoundTripKeepsTheExponent) {
+    const std::string path = slut_test::temp_stem("surface_G_n20") + ".slut";
+    save_binary(surface_G_table_by_quadrature(20, 5.0, 4, 5), path);
+    const Table back = load_table(path);
+    std::remove(path.c_str());
+    const SurfaceTable t(back);
+    EXPECT_EQ(t.exponent(), 20);
+    const double T = slut_axis_node(&back.axes[0].map, 2), theta = slut_axis_node(&back.axes[1].map, 3);
+    EXPECT_NEAR(t.G(T, theta) / surface_G_exact(20, T, theta), 1.0, 1e-12); // a node, stored in f64
+}
+
+TEST(SurfaceGnTable, BadExponentsAndMismatchesRefused) {
+    EXPECT_THROW(surface_G_layout(0, 10.0, 8, 9), std::invalid_argument);
+    EXPECT_THROW(surface_G_layout(kSurfaceMaxExponent + 1, 10.0, 8, 9), std::invalid_argument);
+    EXPECT_THROW(surface_G_layout(20, 10.0, 8, 2), std::invalid_argument);
+    EXPECT_THROW(surface_G_layout(20, 701.0, 8, 9), std::invalid_argument); // e^{−T} no longer a normal double
+    EXPECT_NO_THROW(surface_G_layout(20, 10.0, 8, 8));                       // n > 1: no kink, any count ≥ 3
+    const Table good = surface_G_table_by_quadrature(20, 2.0, 3, 4);
+    Table t = good;
+    for (const char *text : {"0", "10001", "-3", "20x", "2.5", "", " 20", "99999999999999999999"}) {
+        t.extra[kSurfaceExponentKey] = text;
+        EXPECT_THROW(SurfaceTable{t}, std::invalid_argument) << "'" << text << "'";
+    }
+    t = good;
+    t.extra.erase(kSurfaceExponentKey);
+    EXPECT_THROW(SurfaceTable{t}, std::invalid_argument);
+    t = good;
+    t.extra[kSurfaceExponentKey] = "1"; // says diffuse: theta_r, log1p, ln_Gn_ratio do not match
+    EXPECT_THROW(SurfaceTable{t}, std::invalid_argument);
+    Table d = surface_G0_table_by_quadrature(2.0, 3, 3);
+    d.extra[kSurfaceExponentKey] = "20"; // says a lobe: theta_s, linear, ln_G0_ratio do not match
+    EXPECT_THROW(SurfaceTable{d}, std::invalid_argument);
+    t = good;
+    t.axes[1].map.warp = SLUT_WARP_LINEAR;
+    EXPECT_THROW(SurfaceTable{t}, std::invalid_argument);
+    t = good;
+    t.axes[1].map.scale = std::numeric_limits<double>::infinity();
+    EXPECT_THROW(SurfaceTable{t}, std::invalid_argument);
+    t = good;
+    t.values[3] = kSurfaceGnMaxLnRatio + 0.01; // above G_n(0, θ)'s largest ratio to N_n
+    EXPECT_THROW(SurfaceTable{t}, std::invalid_argument);
+    t = good;
+    t.values[3] = std::numeric_limits<double>::infinity();
+    EXPECT_THROW(SurfaceTable{t}, std::invalid_argument);
 }
 
 } // namespace

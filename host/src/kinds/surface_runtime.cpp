@@ -1,9 +1,10 @@
 // The surface terms' runtime facet (kinds/runtime_kind.hpp): the eval quantities "surface"
 // (E_ss, the scattered irradiance of a surface in the medium) and "surface_specular" (S_n, the
 // Phong-lobe-weighted incident airlight) of Sun et al. 2005 (docs/PHYSICS.md §1.5), exact by
-// quadrature (scatterlut/surface.hpp). A loaded surface_G table (scatterlut/surface_table.hpp:
-// the diffuse G0) answers "surface"'s "table" where the query's T = σ_t D lies in its domain
-// ("table": null otherwise, and always for "surface_specular": no G_n table yet).
+// quadrature (scatterlut/surface.hpp). A loaded surface_G table (scatterlut/surface_table.hpp)
+// answers "table" for the exponent it records — "surface" from an exponent-1 table,
+// "surface_specular" of exponent n from an exponent-n table — where the query's T = σ_t D lies
+// in its domain ("table": null otherwise).
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -44,6 +45,13 @@ int surface_exponent(const nlohmann::json &q) {
     return static_cast<int>(n);
 }
 
+// The first loaded surface_G table of exponent n whose T domain holds T, or nullptr.
+const SurfaceTable *table_serving(const EvalTables &tables, int exponent, double optical_distance) {
+    return first_runtime<SurfaceTable>(tables.samplers, [exponent, optical_distance](const SurfaceTable &t) {
+        return t.exponent() == exponent && optical_distance <= t.T_max();
+    });
+}
+
 class SurfaceRuntime final : public RuntimeKind {
 public:
     const char *name() const override { return kKindSurfaceG; }
@@ -57,9 +65,7 @@ public:
             const SurfaceQuery s = surface_query(q, "theta_s");
             eval_put(out, "exact", surface_irradiance_exact(s)); // validates the query
             const double T = (s.sigma_s_per_m + s.sigma_a_per_m) * s.distance_m;
-            const SurfaceTable *table = first_runtime<SurfaceTable>(
-                tables.samplers, [T](const SurfaceTable &t) { return T <= t.T_max(); });
-            if (table) eval_put(out, "table", table->irradiance(s));
+            if (const SurfaceTable *table = table_serving(tables, 1, T)) eval_put(out, "table", table->irradiance(s));
             else out["table"] = nullptr;
             eval_put(out, "no_extinction", surface_irradiance_no_extinction(s));
             eval_put(out, "direct", s.intensity_W_per_sr * std::exp(-T) * std::fmax(std::cos(s.theta_rad), 0.0) /
@@ -69,8 +75,9 @@ public:
         const SurfaceQuery s = surface_query(q, "theta_r"); // quantity "surface_specular"
         const int n = surface_exponent(q);
         eval_put(out, "exact", surface_specular_exact(s, n)); // validates the query
-        out["table"] = nullptr;
         const double T = (s.sigma_s_per_m + s.sigma_a_per_m) * s.distance_m;
+        if (const SurfaceTable *table = table_serving(tables, n, T)) eval_put(out, "table", table->specular(s));
+        else out["table"] = nullptr;
         eval_put(out, "direct", s.intensity_W_per_sr * std::exp(-T) * std::pow(std::fmax(std::cos(s.theta_rad), 0.0), n) /
                                     (s.distance_m * s.distance_m));
     }
