@@ -39,12 +39,12 @@ SurfaceRadiance from_terms(const slut_surface_terms &t) {
 }
 
 // G of `exponent` at (T, θ): from the table inside its T axis, else by quadrature.
-double G_from(const SurfaceTable &table, int exponent, double T, double theta) {
-    if (T <= table.T_max()) return table.G0(T, theta);
-    return surface_G_exact(exponent, T, theta);
+double G_from(const SurfaceTable &table, double T, double theta) {
+    if (T <= table.T_max()) return table.G(T, theta);
+    return surface_G_exact(table.exponent(), T, theta);
 }
 
-// The radiance with G_1 and G_n from `g_of(exponent, T, θ)`; the G's are computed only for the
+// The radiance with G_1 = g_of(false, 1, T, θ_s) and G_n = g_of(true, n, T, θ_r); the G's are computed only for the
 // terms that need them (k_d > 0, k_s > 0, light and viewer valid, σ_s I0 > 0).
 template <class GOf>
 SurfaceRadiance assemble(const SurfaceLighting &s, double sigma_s, double sigma_a, const SurfaceMaterial &m,
@@ -56,8 +56,8 @@ SurfaceRadiance assemble(const SurfaceLighting &s, double sigma_s, double sigma_
     // Beyond kGUnderflowT every G underflows (G ≤ G0(0, 0) e^{−T} = (π² + 2π) e^{−T} < 1e-320):
     // 0 without a quadrature (T may be +inf there).
     if (g.kind == SLUT_SURF_OK && sigma_s > 0.0 && s.intensity_W_per_sr > 0.0 && T <= kGUnderflowT) {
-        if (m.diffuse_albedo > 0.0) g_diffuse = g_of(1, T, g.theta_s);
-        if (m.specular_per_sr > 0.0) g_specular = g_of(m.phong_exponent, T, g.theta_r);
+        if (m.diffuse_albedo > 0.0) g_diffuse = g_of(false, 1, T, g.theta_s);
+        if (m.specular_per_sr > 0.0) g_specular = g_of(true, m.phong_exponent, T, g.theta_r);
     }
     return from_terms(slut_surface_assemble(g, sigma_s, sigma_a, s.intensity_W_per_sr, m.diffuse_albedo,
                                             m.specular_per_sr, m.phong_exponent, g_diffuse, g_specular));
@@ -103,18 +103,22 @@ SurfaceRadiance surface_radiance(const SurfaceTables &tables, const SurfaceLight
             "surface radiance: diffuse_albedo > 0 needs the diffuse (G0) table");
     require(m.specular_per_sr == 0.0 || tables.specular != nullptr,
             "surface radiance: specular_per_sr > 0 needs a specular table of the material's exponent");
-    if (!(m.specular_per_sr == 0.0 || m.phong_exponent == 1))
-        throw std::invalid_argument("surface radiance: the specular table is of exponent 1, the material's exponent is " +
+    if (m.diffuse_albedo > 0.0 && tables.diffuse->exponent() != 1)
+        throw std::invalid_argument("surface radiance: the diffuse table is of exponent " +
+                                    std::to_string(tables.diffuse->exponent()) + ", expected 1 (G0)");
+    if (m.specular_per_sr > 0.0 && tables.specular->exponent() != m.phong_exponent)
+        throw std::invalid_argument("surface radiance: the specular table is of exponent " +
+                                    std::to_string(tables.specular->exponent()) + ", the material's exponent is " +
                                     std::to_string(m.phong_exponent));
-    return assemble(s, sigma_s_per_m, sigma_a_per_m, m, [&](int exponent, double T, double theta) {
-        return G_from(exponent == 1 && tables.diffuse ? *tables.diffuse : *tables.specular, exponent, T, theta);
+    return assemble(s, sigma_s_per_m, sigma_a_per_m, m, [&](bool lobe, int, double T, double theta) {
+        return G_from(lobe ? *tables.specular : *tables.diffuse, T, theta);
     });
 }
 
 SurfaceRadiance surface_radiance_exact(const SurfaceLighting &s, double sigma_s_per_m, double sigma_a_per_m,
                                        const SurfaceMaterial &m) {
     return assemble(s, sigma_s_per_m, sigma_a_per_m, m,
-                    [](int exponent, double T, double theta) { return surface_G_exact(exponent, T, theta); });
+                    [](bool, int exponent, double T, double theta) { return surface_G_exact(exponent, T, theta); });
 }
 
 Rgb surface_radiance_rgb(const SurfaceTables &tables, const SurfaceLighting &s, const Rgb &sigma_s_per_m,

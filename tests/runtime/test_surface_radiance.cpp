@@ -23,8 +23,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kTMax = 10.0;
-// The accepted sampling error of the small G0 table below (24 × 25 on T ≤ 10: small, since
-// CTest runs each test in its own process, each filling the table by quadrature): the
+constexpr int kExponent = 20; // the wet lobe's Phong exponent of these tests
+// The accepted sampling error of the small G0 and G_20 tables below (24 × 25 on T ≤ 10: small,
+// since CTest runs each test in its own process, each filling its tables by quadrature): the
 // scattered terms carry it, the direct terms are exact. Measured: the random test prints it.
 constexpr double kTableRel = 2e-2;
 
@@ -33,10 +34,15 @@ const SurfaceTable &g0_table() {
     return t;
 }
 
+const SurfaceTable &g20_table() {
+    static const SurfaceTable t(surface_G_table_by_quadrature(kExponent, kTMax, 24, 25));
+    return t;
+}
+
 SurfaceTables tables() {
     SurfaceTables t;
     t.diffuse = &g0_table();
-    t.specular = &g0_table();
+    t.specular = &g20_table();
     return t;
 }
 
@@ -49,7 +55,7 @@ SurfaceLighting at_origin(double lx, double ly, double lz, double vx, double vy,
     return s;
 }
 
-SurfaceMaterial material(double kd, double ks, int n = 1) {
+SurfaceMaterial material(double kd, double ks, int n = kExponent) {
     SurfaceMaterial m;
     m.diffuse_albedo = kd;
     m.specular_per_sr = ks;
@@ -102,7 +108,7 @@ TEST(SurfaceRadiance, TableAgainstExactOverRandomGeometries) {
         ++used;
     }
     EXPECT_GE(used, 250); // most geometries inside the table's T domain
-    std::printf("surface radiance, G0 table 24x25 (T <= %g) vs exact over %d geometries: scattered terms max rel "
+    std::printf("surface radiance, G0 and G_20 tables 24x25 (T <= %g) vs exact over %d geometries: scattered terms max rel "
                 "%.3e, total max rel %.3e\n",
                 kTMax, used, worst_diffuse, worst_total);
 }
@@ -132,7 +138,7 @@ TEST(SurfaceRadiance, KnownAnglesAgainstTheIrradianceFunctions) {
         q.theta_rad = c.theta_s;
         const double E_ss = surface_irradiance_exact(q);
         q.theta_rad = c.theta_r;
-        const double S_1 = surface_specular_exact(q, 1);
+        const double S_n = surface_specular_exact(q, kExponent);
         const double direct = I0 * std::exp(-sigma_t * D) / (D * D);
         const SurfaceRadiance e = surface_radiance_exact(s, sigma_s, sigma_a, material(kd, ks));
         const SurfaceRadiance t = surface_radiance(tables(), s, sigma_s, sigma_a, material(kd, ks));
@@ -140,9 +146,10 @@ TEST(SurfaceRadiance, KnownAnglesAgainstTheIrradianceFunctions) {
         const double lit = std::cos(c.theta_s) > 0 ? 1.0 : 0.0;
         EXPECT_NEAR(e.diffuse_direct, view * kd / kPi * direct * std::max(std::cos(c.theta_s), 0.0), 1e-13 * direct);
         EXPECT_NEAR(e.diffuse_scattered / (view * kd / kPi * E_ss), 1.0, 1e-9) << c.theta_s;
-        EXPECT_NEAR(e.specular_direct, lit * view * ks * direct * std::max(std::cos(c.theta_r), 0.0), 1e-12 * direct)
+        EXPECT_NEAR(e.specular_direct, lit * view * ks * direct * std::pow(std::max(std::cos(c.theta_r), 0.0), kExponent),
+                    1e-12 * direct)
             << c.theta_s;
-        EXPECT_NEAR(e.specular_scattered / (view * ks * S_1), 1.0, 1e-9) << c.theta_s;
+        EXPECT_NEAR(e.specular_scattered / (view * ks * S_n), 1.0, 1e-9) << c.theta_s;
         EXPECT_NEAR(t.diffuse_scattered / e.diffuse_scattered, 1.0, kTableRel);
         EXPECT_NEAR(t.specular_scattered / e.specular_scattered, 1.0, kTableRel);
     }
@@ -193,7 +200,7 @@ TEST(SurfaceRadiance, LightBelowTheHorizon) {
     // The light 0.01 rad below the horizon along +x; the viewer grazing from −x (ρ ≈ +x):
     // cos θ_r > 0 but the light is below the surface.
     SurfaceLighting grazing = at_origin(5.0 * std::cos(0.01), 0.0, -5.0 * std::sin(0.01), -8.0, 0.0, 0.5);
-    const SurfaceRadiance r = surface_radiance_exact(grazing, sigma_s, sigma_a, material(0.5, 0.5, 1));
+    const SurfaceRadiance r = surface_radiance_exact(grazing, sigma_s, sigma_a, material(0.5, 0.5));
     EXPECT_EQ(r.specular_direct, 0.0);
     EXPECT_EQ(r.diffuse_direct, 0.0);
     EXPECT_GT(r.specular_scattered, 0.0);
@@ -225,6 +232,18 @@ TEST(SurfaceRadiance, ViewerBelowAndRgb) {
         EXPECT_NEAR(t[c] / e[c], 1.0, kTableRel);
     }
     EXPECT_GT(e[0], e[2]); // the clearer channel is brighter
+}
+
+// n = 1: the G0 table serves the lobe too (G_1 = G0 at θ_r).
+TEST(SurfaceRadiance, ExponentOneFromTheG0Table) {
+    SurfaceTables both;
+    both.diffuse = &g0_table();
+    both.specular = &g0_table();
+    const SurfaceLighting s = at_origin(2, 1, 3, -1, 2, 4);
+    const SurfaceRadiance t = surface_radiance(both, s, 0.1, 0.02, material(0.5, 0.4, 1));
+    const SurfaceRadiance e = surface_radiance_exact(s, 0.1, 0.02, material(0.5, 0.4, 1));
+    EXPECT_NEAR(t.specular_scattered / e.specular_scattered, 1.0, kTableRel);
+    EXPECT_NEAR(t.diffuse_scattered / e.diffuse_scattered, 1.0, kTableRel);
 }
 
 // Extreme inputs: never NaN, never negative (+∞ allowed only where I0/D² overflows).
@@ -267,7 +286,11 @@ TEST(SurfaceRadiance, BadInputRefused) {
     refused(ok, 0.1, 0.0, material(1, 0, kSurfaceMaxExponent + 1), tables());
     refused(ok, 0.1, 0.0, material(1, 0), SurfaceTables{});       // k_d > 0 without a G0 table
     refused(ok, 0.1, 0.0, material(0, 1), SurfaceTables{});       // k_s > 0 without a G_n table
-    refused(ok, 0.1, 0.0, material(0, 1, 20), tables());          // a G_n table of another exponent
+    refused(ok, 0.1, 0.0, material(0, 1, 200), tables());         // a G_n table of another exponent
+    SurfaceTables swapped;
+    swapped.diffuse = &g20_table(); // a G_20 table as the diffuse one
+    swapped.specular = &g20_table();
+    refused(ok, 0.1, 0.0, material(1, 0), swapped);
     const Rgb bad{0.1, -1.0, 0.1}, zero{0, 0, 0};
     EXPECT_THROW(surface_radiance_rgb(tables(), ok, bad, zero, material(1, 0)), std::invalid_argument);
     try {

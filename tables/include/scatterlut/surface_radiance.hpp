@@ -57,9 +57,9 @@ struct SurfaceRadiance {
 void check_surface_lighting(const SurfaceLighting &s, double sigma_s_per_m, double sigma_a_per_m,
                             const SurfaceMaterial &m);
 
-// The tables the front-end samples (not owned): diffuse = a surface_G table of G0, needed when
-// k_d > 0; specular = a G_n table of the material's exponent, needed when k_s > 0 (for n = 1
-// the G0 table serves both). Where T = σ_t D lies beyond a table's T axis the front-end
+// The tables the front-end samples (not owned): diffuse = a surface_G table of exponent 1
+// (G0), needed when k_d > 0; specular = a surface_G table whose exponent() is the material's
+// n, needed when k_s > 0 (for n = 1 the G0 table serves both). Where T = σ_t D lies beyond a table's T axis the front-end
 // integrates that G exactly (surface_G_exact: ~1 ms per call) instead of extrapolating.
 struct SurfaceTables {
     const SurfaceTable *diffuse = nullptr;
@@ -67,7 +67,8 @@ struct SurfaceTables {
 };
 
 // L from the tables (grey medium). Throws std::invalid_argument (check_surface_lighting; a
-// table missing for a non-zero coefficient; a specular table of another exponent). ≥ 0, never
+// table missing for a non-zero coefficient; a diffuse table not of exponent 1; a specular
+// table of another exponent). ≥ 0, never
 // NaN; finite unless I0/D² itself overflows (a light within ~1e-154 m of the point).
 SurfaceRadiance surface_radiance(const SurfaceTables &tables, const SurfaceLighting &s, double sigma_s_per_m,
                                  double sigma_a_per_m, const SurfaceMaterial &m);
