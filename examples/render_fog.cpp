@@ -165,7 +165,7 @@ struct Picture {
 
 // The street's materials (street pair): Sun et al. 2005's Lambertian term plus, on the wet
 // road, an unnormalised Phong lobe of exponent kWetExponent (scatterlut/surface_radiance.hpp).
-constexpr int kWetExponent = 1;
+constexpr int kWetExponent = 20;
 struct StreetMaterial {
     scatterlut::SurfaceMaterial reflectance;
     Vec3 colour; // relative tint of the albedo
@@ -382,13 +382,15 @@ bool render_street(const std::string &dir, TableAir table_air, ExactAir exact_ai
                 }
     const double T_max = (kFogSigmaS + kFogSigmaA) * far_m;
     const auto t0 = clk::now();
-    const scatterlut::SurfaceTable g0(scatterlut::surface_G0_table_by_quadrature(T_max, kStreetTableT, kStreetTableTheta));
+    const scatterlut::SurfaceTable g0(scatterlut::surface_G_table_by_quadrature(1, T_max, kStreetTableT, kStreetTableTheta));
+    const scatterlut::SurfaceTable gn(
+        scatterlut::surface_G_table_by_quadrature(kWetExponent, T_max, kStreetTableT, kStreetTableTheta));
     const double ms_tables = std::chrono::duration<double, std::milli>(clk::now() - t0).count();
-    std::printf("lit street: G0 table %dx%d on T <= %.3f filled by quadrature in %.1f ms\n", kStreetTableT,
-                kStreetTableTheta, T_max, ms_tables);
+    std::printf("lit street: G0 and G%d tables %dx%d on T <= %.3f filled by quadrature in %.1f ms\n", kWetExponent,
+                kStreetTableT, kStreetTableTheta, T_max, ms_tables);
     scatterlut::SurfaceTables tables;
     tables.diffuse = &g0;
-    tables.specular = &g0;
+    tables.specular = &gn;
     const auto table_surface = [&](const scatterlut::SurfaceLighting &s, const scatterlut::SurfaceMaterial &m) {
         return scatterlut::surface_radiance(tables, s, kFogSigmaS, kFogSigmaA, m).total();
     };
