@@ -364,7 +364,7 @@ bool render_pair(const std::string &dir, const std::string &stem, const char *ti
 // (street_full_table.png, the exposure of the pair). The G tables are filled here on the CPU
 // by quadrature (surface_G*_table_by_quadrature) on T ∈ [0, T_max], T_max = σ_t times the
 // farthest lamp–street distance (at a corner of the street's box, where it is largest).
-constexpr int kStreetWidth = 80, kStreetHeight = 45;
+constexpr int kStreetWidth = 64, kStreetHeight = 36;
 constexpr int kStreetTableT = 24, kStreetTableTheta = 25; // nodes of the G tables (T × θ)
 constexpr double kStreetKey = 0.08; // a brighter key than the first pictures: the lit surfaces
 

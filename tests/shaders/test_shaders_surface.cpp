@@ -104,26 +104,16 @@ double log_uniform(std::mt19937_64 &rng, double lo, double hi) {
     return lo * std::pow(hi / lo, std::uniform_real_distribution<double>(0.0, 1.0)(rng));
 }
 
-std::array<double, 3> random_unit(std::mt19937_64 &rng) {
-    std::normal_distribution<double> n(0.0, 1.0);
-    for (;;) {
-        const std::array<double, 3> v = {n(rng), n(rng), n(rng)};
-        const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-        if (len > 1e-3) return {v[0] / len, v[1] / len, v[2] / len};
-    }
-}
+using Vec = std::array<double, 3>;
 
-// A unit vector at cosine mu to n (random azimuth).
-std::array<double, 3> at_cosine(std::mt19937_64 &rng, const std::array<double, 3> &n, double mu) {
-    std::array<double, 3> t;
-    do {
-        const std::array<double, 3> v = random_unit(rng);
-        const double d = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
-        t = {v[0] - d * n[0], v[1] - d * n[1], v[2] - d * n[2]};
-    } while (t[0] * t[0] + t[1] * t[1] + t[2] * t[2] < 1e-6);
-    const double tl = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-    const double s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
-    return {mu * n[0] + s * t[0] / tl, mu * n[1] + s * t[1] / tl, mu * n[2] + s * t[2] / tl};
+// The unit vector at polar cosine `mu` and azimuth `phi` about the unit vector n, in the
+// orthonormal basis (b1, b2, n) of Duff et al. 2017 ("Building an orthonormal basis, revisited").
+Vec about(const Vec &n, double mu, double phi) {
+    const double sign = std::copysign(1.0, n[2]), a = -1.0 / (sign + n[2]), b = n[0] * n[1] * a;
+    const Vec b1{1.0 + sign * n[0] * n[0] * a, sign * b, -sign * n[0]}, b2{b, sign + n[1] * n[1] * a, -n[1]};
+    const double s = std::sqrt(std::max(0.0, 1.0 - mu * mu)), c = std::cos(phi), d = std::sin(phi);
+    return {mu * n[0] + s * (c * b1[0] + d * b2[0]), mu * n[1] + s * (c * b1[1] + d * b2[1]),
+            mu * n[2] + s * (c * b1[2] + d * b2[2])};
 }
 
 // The G the shader computes beyond the T axis: the ratio at the clamped T times the scale at
@@ -196,10 +186,10 @@ void add_radiance_queries(std::mt19937_64 &rng, std::vector<Query> &out) {
     const scatterlut::SurfaceTables cpp_tables{tables().diffuse.cpp.get(), tables().specular.cpp.get()};
     int made = 0;
     for (int attempt = 0; attempt < 10000 && made < 800; ++attempt) {
-        const auto n = random_unit(rng);
+        const Vec n = about({0.0, 0.0, 1.0}, 2.0 * unit(rng) - 1.0, 2.0 * kPi * unit(rng)); // uniform on the sphere
         const double cos_s = unit(rng) < 0.1 ? -0.01 * unit(rng) : 2.0 * unit(rng) - 1.0;
-        const auto ldir = at_cosine(rng, n, cos_s);
-        const auto vdir = at_cosine(rng, n, 0.02 + 0.98 * unit(rng));
+        const Vec ldir = about(n, cos_s, 2.0 * kPi * unit(rng));
+        const Vec vdir = about(n, 0.02 + 0.98 * unit(rng), 2.0 * kPi * unit(rng));
         const double D = log_uniform(rng, 0.3, 20.0), Dv = log_uniform(rng, 0.5, 50.0);
         const double sigma_t = log_uniform(rng, 0.01, 1.0), albedo = 0.05 + 0.95 * unit(rng);
         Query q;
