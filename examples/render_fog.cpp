@@ -205,57 +205,57 @@ std::vector<double> render(const Picture &picture, const Medium &fog, AirFn airl
     const double eye[3] = {kEye.x, kEye.y, kEye.z};
     const Vec3 fog_t = vec(fog.sigma_s) + vec(fog.sigma_a);
     const auto pixel = [&](int i, int j) {
-            double px = (2 * (i + 0.5) / width - 1) * th * aspect;
-            double py = (1 - 2 * (j + 0.5) / height) * th;
-            Vec3 d = normalize(fwd + px * right + py * up);
-            Hit h = trace(kEye, d, picture.street);
-            const double dir[3] = {d.x, d.y, d.z};
-            Vec3 L{0, 0, 0};
+        double px = (2 * (i + 0.5) / width - 1) * th * aspect;
+        double py = (1 - 2 * (j + 0.5) / height) * th;
+        Vec3 d = normalize(fwd + px * right + py * up);
+        Hit h = trace(kEye, d, picture.street);
+        const double dir[3] = {d.x, d.y, d.z};
+        Vec3 L{0, 0, 0};
+        for (const Light &l : kLights) {
+            const double lp[3] = {l.pos.x, l.pos.y, l.pos.z};
+            auto q = scatterlut::airlight_query_from_points(eye, dir, lp, h.s, fog.sigma_s[0], fog.sigma_a[0], l.I0);
+            L = L + airlight(q) * l.color;
+        }
+        if (h.slab) {
+            Vec3 p = kEye + h.s * d;
             for (const Light &l : kLights) {
-                const double lp[3] = {l.pos.x, l.pos.y, l.pos.z};
-                auto q = scatterlut::airlight_query_from_points(eye, dir, lp, h.s, fog.sigma_s[0], fog.sigma_a[0], l.I0);
-                L = L + airlight(q) * l.color;
+                scatterlut::NearLightQuery q;
+                q.sigma_s_per_m = kSlabSigmaS;
+                q.sigma_a_per_m = kSlabSigmaA;
+                q.intensity_W_per_sr = l.I0;
+                q.normal[0] = 0, q.normal[1] = 0, q.normal[2] = 1;
+                q.eye_dir[0] = -d.x, q.eye_dir[1] = -d.y, q.eye_dir[2] = -d.z;
+                Vec3 rel = l.pos - p;
+                q.light_rel_m[0] = rel.x, q.light_rel_m[1] = rel.y, q.light_rel_m[2] = rel.z;
+                q.length_m = kInf;
+                // Fog attenuates the light on its way to the slab and the slab's glow on
+                // its way to the camera (the same factor in both renders).
+                const double path_m = std::sqrt(dot(rel, rel)) + h.s;
+                const Vec3 att{std::exp(-fog_t.x * path_m), std::exp(-fog_t.y * path_m),
+                               std::exp(-fog_t.z * path_m)};
+                const double Ln = near_light(q);
+                L = L + (grey(Ln) * att) * Vec3{l.color.x * kSlabColor.x, l.color.y * kSlabColor.y,
+                                                l.color.z * kSlabColor.z};
             }
-            if (h.slab) {
-                Vec3 p = kEye + h.s * d;
-                for (const Light &l : kLights) {
-                    scatterlut::NearLightQuery q;
-                    q.sigma_s_per_m = kSlabSigmaS;
-                    q.sigma_a_per_m = kSlabSigmaA;
-                    q.intensity_W_per_sr = l.I0;
-                    q.normal[0] = 0, q.normal[1] = 0, q.normal[2] = 1;
-                    q.eye_dir[0] = -d.x, q.eye_dir[1] = -d.y, q.eye_dir[2] = -d.z;
-                    Vec3 rel = l.pos - p;
-                    q.light_rel_m[0] = rel.x, q.light_rel_m[1] = rel.y, q.light_rel_m[2] = rel.z;
-                    q.length_m = kInf;
-                    // Fog attenuates the light on its way to the slab and the slab's glow on
-                    // its way to the camera (the same factor in both renders).
-                    const double path_m = std::sqrt(dot(rel, rel)) + h.s;
-                    const Vec3 att{std::exp(-fog_t.x * path_m), std::exp(-fog_t.y * path_m),
-                                   std::exp(-fog_t.z * path_m)};
-                    const double Ln = near_light(q);
-                    L = L + (grey(Ln) * att) * Vec3{l.color.x * kSlabColor.x, l.color.y * kSlabColor.y,
-                                                    l.color.z * kSlabColor.z};
-                }
+        }
+        if (picture.street && h.surface != Surface::none && std::isfinite(h.s)) {
+            // The street's surfaces: the radiance of each lamp's light reaching the point
+            // directly and scattered by the fog (Sun et al. 2005), seen through the fog.
+            // The view ray's own airlight is the sum above.
+            const Vec3 p = kEye + h.s * d;
+            const StreetMaterial m = street_material(h.surface);
+            scatterlut::SurfaceLighting s;
+            s.point_m[0] = p.x, s.point_m[1] = p.y, s.point_m[2] = p.z;
+            s.normal[0] = h.normal.x, s.normal[1] = h.normal.y, s.normal[2] = h.normal.z;
+            s.viewer_m[0] = kEye.x, s.viewer_m[1] = kEye.y, s.viewer_m[2] = kEye.z;
+            for (const Light &l : kLights) {
+                s.light_m[0] = l.pos.x, s.light_m[1] = l.pos.y, s.light_m[2] = l.pos.z;
+                s.intensity_W_per_sr = l.I0;
+                L = L + grey(surface(s, m.reflectance)) * (l.color * m.colour);
             }
-            if (picture.street && h.surface != Surface::none && std::isfinite(h.s)) {
-                // The street's surfaces: the radiance of each lamp's light reaching the point
-                // directly and scattered by the fog (Sun et al. 2005), seen through the fog.
-                // The view ray's own airlight is the sum above.
-                const Vec3 p = kEye + h.s * d;
-                const StreetMaterial m = street_material(h.surface);
-                scatterlut::SurfaceLighting s;
-                s.point_m[0] = p.x, s.point_m[1] = p.y, s.point_m[2] = p.z;
-                s.normal[0] = h.normal.x, s.normal[1] = h.normal.y, s.normal[2] = h.normal.z;
-                s.viewer_m[0] = kEye.x, s.viewer_m[1] = kEye.y, s.viewer_m[2] = kEye.z;
-                for (const Light &l : kLights) {
-                    s.light_m[0] = l.pos.x, s.light_m[1] = l.pos.y, s.light_m[2] = l.pos.z;
-                    s.intensity_W_per_sr = l.I0;
-                    L = L + grey(surface(s, m.reflectance)) * (l.color * m.colour);
-                }
-            }
-            double *o = &img[(size_t(j) * width + i) * 3];
-            o[0] = L.x, o[1] = L.y, o[2] = L.z;
+        }
+        double *o = &img[(size_t(j) * width + i) * 3];
+        o[0] = L.x, o[1] = L.y, o[2] = L.z;
     };
     const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
     std::vector<std::exception_ptr> failed(static_cast<size_t>(threads));
