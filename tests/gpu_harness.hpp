@@ -1,5 +1,6 @@
-// The GPU test harness shared by the shader tests (test_shaders.cpp: airlight,
-// test_shaders_nearlight.cpp: near light): tool runs (glslang, spirv-cross) in a scratch
+// The GPU test harness shared by the shader tests (tests/shaders/: the airlight and near-light
+// snippets, isotropic and Henyey-Greenstein; what the airlight tests share beyond this is
+// shaders/airlight_gpu_test.hpp, the near-light ones shaders/nearlight_gpu_test.hpp): tool runs (glslang, spirv-cross) in a scratch
 // directory, and one surfaceless EGL / OpenGL 4.3 core context (Mesa llvmpipe where there
 // is no GPU) that runs a compute shader over a buffer of queries with one R32F texture.
 #pragma once
@@ -136,6 +137,43 @@ inline std::string hlsl_compute_to_glsl(const std::string &tag, const std::strin
         return "";
     }
     return read_text(glsl);
+}
+
+// A compute shader around `snippet` that evaluates one query per invocation, in GLSL 4.30 or
+// HLSL: `body` defines float test_eval(int i) (written once for both languages with the
+// snippets' own prelude macros: SLUT_FLOAT3, SLUT_TEX_ARG(slut_test_table)); `params` the
+// fields of the uniform block (n_queries among them); `defines` goes first. Bindings: 0 the
+// table (a 2-D texture, or 3-D with three_d), 1 the queries q[], 2 the results r[], 3 the
+// parameters (std140).
+inline std::string glsl_compute_source(const std::string &snippet, const std::string &params,
+                                       const std::string &body, const std::string &defines, bool three_d) {
+    return "#version 430\n" + defines + "\nlayout(local_size_x = 64) in;\nlayout(binding = 0) uniform " +
+           (three_d ? "sampler3D" : "sampler2D") + R"glsl( slut_test_table;
+layout(std430, binding = 1) readonly buffer SlutTestQueries { float q[]; };
+layout(std430, binding = 2) writeonly buffer SlutTestResults { float r[]; };
+layout(std140, binding = 3) uniform SlutTestParams {
+)glsl" + params + "\n};\n" + snippet + body + R"glsl(
+void main() {
+    int i = int(gl_GlobalInvocationID.x);
+    if (i < n_queries) r[i] = test_eval(i);
+}
+)glsl";
+}
+
+inline std::string hlsl_compute_source(const std::string &snippet, const std::string &params,
+                                       const std::string &body, const std::string &defines, bool three_d) {
+    return defines + "\n[[vk::binding(0)]] " + (three_d ? "Texture3D" : "Texture2D") + R"hlsl(<float> slut_test_table;
+[[vk::binding(4)]] SamplerState slut_test_table_sampler;
+[[vk::binding(1)]] StructuredBuffer<float> q;
+[[vk::binding(2)]] RWStructuredBuffer<float> r;
+[[vk::binding(3)]] cbuffer SlutTestParams {
+)hlsl" + params + "\n};\n" + snippet + body + R"hlsl(
+[numthreads(64, 1, 1)]
+void main(uint3 id : SV_DispatchThreadID) {
+    int i = int(id.x);
+    if (i < n_queries) r[i] = test_eval(i);
+}
+)hlsl";
 }
 
 // relative error; infinities must match, NaN never does, 0 only by 0.
@@ -288,5 +326,20 @@ void main() {
 }
 
 #endif // SLUT_HAVE_EGL
+
+// The fixture of the tests that run shaders: skips (or fails, SCATTERLUT_REQUIRE_SHADER_TESTS)
+// without a GPU context; records and prints the renderer.
+class GpuTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+#if SLUT_HAVE_EGL
+        if (!gpu().ok) SLUT_SKIP_OR_FAIL("no GPU context: " + gpu().why_not);
+        RecordProperty("renderer", gpu().renderer);
+        std::printf("[ renderer ] %s\n", gpu().renderer.c_str());
+#else
+        SLUT_SKIP_OR_FAIL("built without EGL/OpenGL headers and libraries (Debian: libegl-dev, libgl-dev)");
+#endif
+    }
+};
 
 } // namespace gpu_harness

@@ -301,46 +301,18 @@ float test_eval(int i) {
 }
 )slsl";
 
+// The compute shaders around the snippet (gpu_harness's wrappers): the uniform block holds per
+// table its two axes (min, max, scale, -) and (warp, count, -, -) and (exponent, row0, -, -).
 std::string glsl_compute_source() {
-    std::string s = "#version 430\n";
-    s += R"glsl(
-layout(local_size_x = 64) in;
-layout(binding = 0) uniform sampler2D slut_test_table;
-layout(std430, binding = 1) readonly buffer SlutTestQueries { float q[]; };
-layout(std430, binding = 2) writeonly buffer SlutTestResults { float res[]; };
-layout(std140, binding = 3) uniform SlutTestParams {
-    vec4 axis_f[4]; ivec4 axis_i[4]; ivec4 table_i[2]; int n_queries;
-};
-)glsl";
-    s += glsl_snippet() + kTestBody;
-    s += R"glsl(
-void main() {
-    int i = int(gl_GlobalInvocationID.x);
-    if (i < n_queries) res[i] = test_eval(i);
-}
-)glsl";
-    return s;
+    return gpu_harness::glsl_compute_source(glsl_snippet(),
+                                            "    vec4 axis_f[4]; ivec4 axis_i[4]; ivec4 table_i[2]; int n_queries;",
+                                            kTestBody, "", false);
 }
 
 std::string hlsl_compute_source() {
-    std::string s = R"hlsl(
-[[vk::binding(0)]] Texture2D<float> slut_test_table;
-[[vk::binding(4)]] SamplerState slut_test_table_sampler;
-[[vk::binding(1)]] StructuredBuffer<float> q;
-[[vk::binding(2)]] RWStructuredBuffer<float> res;
-[[vk::binding(3)]] cbuffer SlutTestParams {
-    float4 axis_f[4]; int4 axis_i[4]; int4 table_i[2]; int n_queries;
-};
-)hlsl";
-    s += hlsl_snippet() + kTestBody;
-    s += R"hlsl(
-[numthreads(64, 1, 1)]
-void main(uint3 id : SV_DispatchThreadID) {
-    int i = int(id.x);
-    if (i < n_queries) res[i] = test_eval(i);
-}
-)hlsl";
-    return s;
+    return gpu_harness::hlsl_compute_source(hlsl_snippet(),
+                                            "    float4 axis_f[4]; int4 axis_i[4]; int4 table_i[2]; int n_queries;",
+                                            kTestBody, "", false);
 }
 
 // A fragment / pixel shader with the airlight and the surface snippets together, as an engine
@@ -522,17 +494,7 @@ TEST(SurfaceShaderGlslang, GlslAndHlslCompile) {
               "");
 }
 
-class SurfaceGpu : public ::testing::Test {
-protected:
-    void SetUp() override {
-#if SLUT_HAVE_EGL
-        if (!gpu().ok) SLUT_SKIP_OR_FAIL("no GPU context: " + gpu().why_not);
-        std::printf("[ renderer ] %s\n", gpu().renderer.c_str());
-#else
-        SLUT_SKIP_OR_FAIL("built without EGL/OpenGL headers and libraries (Debian: libegl-dev, libgl-dev)");
-#endif
-    }
-};
+class SurfaceGpu : public gpu_harness::GpuTest {};
 
 TEST_F(SurfaceGpu, GlslMatchesTheCppFrontEnd) {
 #if SLUT_HAVE_EGL
