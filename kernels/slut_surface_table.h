@@ -102,7 +102,8 @@ SLUT_FN double slut_surface_Gn_lobe_scale(int exponent, double theta) {
 
 /* The scale a surface_G table of exponent n ≥ 1 divides G_n by (the stored channel is
  * ln(G_n / scale)): e^{−T} G_1(0, θ) for n = 1, e^{−T} N_n(θ) for n > 1. T ≥ 0, θ ∈ [0, π].
- * Underflows to 0 for T > ~745 (the tables end at T ≤ 700). */
+ * Underflows to 0 for T > ~745 in double (the tables end at T ≤ 700) and for T > ~87 in float
+ * (the shaders: e^{−87} ≈ 1.6e-38, light that is gone against anything else in the frame). */
 SLUT_FN double slut_surface_G_scale(int exponent, double optical_distance, double theta) {
     double shape = exponent == 1 ? slut_surface_G0_no_extinction(slut_clamp(theta, 0.0, SLUT_PI))
                                  : slut_surface_Gn_lobe_scale(exponent, theta);
