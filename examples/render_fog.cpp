@@ -11,7 +11,14 @@
 // and exactly (airlight_radiance_exact_rgb), written to table_hg.png and exact_hg.png, with
 // the same PSNR check.
 //
-//   render_fog out/airlight_F.slut out/near_light_E3.slut out_dir [out_fwd/airlight_Fg_g0.85.slut]
+// With --street it renders the grey-fog street a third time with side walls and its ground,
+// walls and far wall lit by every lamp through the fog (scatterlut/surface_radiance.hpp: the
+// direct light plus Sun et al. 2005's scattered terms E_ss and S_n; the wet road has a Phong
+// lobe), from G tables it fills itself by quadrature and with G by quadrature per pixel:
+// street_table.png and street_exact.png (small: the exact G costs ~1 ms per pixel and lamp),
+// the same PSNR check, and street_full_table.png (480 × 270, tables only).
+//
+//   render_fog out/airlight_F.slut out/near_light_E3.slut out_dir [out_fwd/airlight_Fg_g0.85.slut] [--street]
 //
 // Links only scatterlut::tables and the project's small internal PNG encoder
 // (tables/png, stored deflate blocks: no zlib/libpng dependency).
@@ -24,6 +31,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "scatterlut/airlight.hpp"
@@ -31,6 +39,8 @@
 #include "scatterlut/anisotropic.hpp"
 #include "scatterlut/io.hpp"
 #include "scatterlut/nearlight.hpp"
+#include "scatterlut/surface_radiance.hpp"
+#include "scatterlut/surface_table.hpp"
 #include "png_writer.hpp"
 
 namespace {
@@ -87,26 +97,48 @@ const std::vector<Light> kLights = {
     {{-2.0, 4.0, 3.0}, 200.0, {1.0, 0.72, 0.38}},    // behind the camera, out of view
 };
 
+// The lit street's surfaces (the street pair only; the first pictures keep the ground and
+// far wall unlit, and no side walls).
+enum class Surface { none, ground, left_wall, right_wall, far_wall };
+
 struct Hit {
     double s = kInf;   // ray length in the fog
     bool slab = false; // hit the slab face
+    Surface surface = Surface::none;
+    Vec3 normal{0, 0, 0}; // the surface's unit normal, facing the street
 };
 
-Hit trace(Vec3 o, Vec3 d) {
+// The street's side walls (street pair only): planes x = ±kStreetHalfWidth, y ∈ [0, kSideWallH],
+// z ∈ [kWallZ, kSideWallZ0], facing the street.
+constexpr double kStreetHalfWidth = 7.0, kSideWallH = 11.0, kSideWallZ0 = 12.0;
+
+Hit trace(Vec3 o, Vec3 d, bool street) {
     Hit h;
     if (d.y < 0) { // ground y = 0
         double t = -o.y / d.y;
-        if (t < h.s) h.s = t;
+        if (t < h.s) h.s = t, h.surface = Surface::ground, h.normal = {0, 1, 0};
     }
     if (d.z < 0) {
         double t = (kWallZ - o.z) / d.z;
         Vec3 p = o + t * d;
-        if (t < h.s && p.y <= kWallH) h.s = t;
+        if (t < h.s && p.y <= kWallH) h.s = t, h.surface = Surface::far_wall, h.normal = {0, 0, 1};
         t = (kSlabZ - o.z) / d.z;
         p = o + t * d;
         if (t < h.s && p.x >= kSlabX0 && p.x <= kSlabX1 && p.y >= 0 && p.y <= kSlabH) {
             h.s = t;
             h.slab = true;
+            h.surface = Surface::none;
+        }
+    }
+    if (street && d.x != 0) {
+        const double wall_x = d.x < 0 ? -kStreetHalfWidth : kStreetHalfWidth;
+        const double t = (wall_x - o.x) / d.x;
+        const Vec3 p = o + t * d;
+        if (t > 0 && t < h.s && p.y >= 0 && p.y <= kSideWallH && p.z >= kWallZ && p.z <= kSideWallZ0) {
+            h.s = t;
+            h.slab = false;
+            h.surface = d.x < 0 ? Surface::left_wall : Surface::right_wall;
+            h.normal = {d.x < 0 ? 1.0 : -1.0, 0, 0};
         }
     }
     return h;
@@ -123,55 +155,123 @@ Vec3 vec(const scatterlut::Rgb &c) { return {c[0], c[1], c[2]}; }
 Vec3 grey(double x) { return {x, x, x}; }
 Vec3 operator*(Vec3 a, Vec3 b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
 
+// One picture: its size and whether the street's surfaces are lit (the street pair: side
+// walls, and the ground, walls and far wall lit through the fog by every lamp).
+struct Picture {
+    int width = kWidth, height = kHeight;
+    bool street = false;
+    double key = 0.025; // the exact image's median radiance after exposure (tone mapping)
+};
+
+// The street's materials (street pair): Sun et al. 2005's Lambertian term plus, on the wet
+// road, an unnormalised Phong lobe of exponent kWetExponent (scatterlut/surface_radiance.hpp).
+constexpr int kWetExponent = 20;
+struct StreetMaterial {
+    scatterlut::SurfaceMaterial reflectance;
+    Vec3 colour; // relative tint of the albedo
+};
+StreetMaterial street_material(Surface s) {
+    StreetMaterial m;
+    if (s == Surface::ground) {
+        // Wet asphalt: dark diffuse, a specular lobe of albedo 0.3 (energy-conserving k_s).
+        m.reflectance.diffuse_albedo = 0.1;
+        m.reflectance.phong_exponent = kWetExponent;
+        m.reflectance.specular_per_sr = 0.3 * (kWetExponent + 2) / (2.0 * 3.14159265358979323846);
+        m.colour = {0.85, 0.85, 0.9};
+    } else if (s == Surface::far_wall) {
+        m.reflectance.diffuse_albedo = 0.35;
+        m.colour = {0.8, 0.8, 0.85};
+    } else { // side walls: light plaster
+        m.reflectance.diffuse_albedo = 0.5;
+        m.colour = {0.95, 0.85, 0.72};
+    }
+    return m;
+}
+
 // Linear RGB radiance image, W/(m²·sr). airlight(q) gives the per-channel airlight of the
-// geometry and intensity in q (its σ fields are the medium's channel 0: the grey fog's).
-template <class AirFn, class NearFn>
-std::vector<double> render(const Medium &fog, AirFn airlight, NearFn near_light) {
-    std::vector<double> img(size_t{kWidth} * kHeight * 3);
+// geometry and intensity in q (its σ fields are the medium's channel 0: the grey fog's);
+// surface(lighting, material) the radiance a street surface sends to the camera from one
+// lamp through the grey fog (picture.street only). Rows are shared among the CPU's threads
+// (each pixel is computed alone: the image does not depend on the thread count).
+template <class AirFn, class NearFn, class SurfFn>
+std::vector<double> render(const Picture &picture, const Medium &fog, AirFn airlight, NearFn near_light,
+                           SurfFn surface) {
+    const int width = picture.width, height = picture.height;
+    std::vector<double> img(size_t(width) * height * 3);
     const Vec3 fwd = normalize(kTarget - kEye);
     const Vec3 right = normalize(cross(fwd, {0, 1, 0}));
     const Vec3 up = cross(right, fwd);
-    const double th = std::tan(kFovY / 2), aspect = double(kWidth) / kHeight;
+    const double th = std::tan(kFovY / 2), aspect = double(width) / height;
     const double eye[3] = {kEye.x, kEye.y, kEye.z};
     const Vec3 fog_t = vec(fog.sigma_s) + vec(fog.sigma_a);
-    for (int j = 0; j < kHeight; ++j)
-        for (int i = 0; i < kWidth; ++i) {
-            double px = (2 * (i + 0.5) / kWidth - 1) * th * aspect;
-            double py = (1 - 2 * (j + 0.5) / kHeight) * th;
-            Vec3 d = normalize(fwd + px * right + py * up);
-            Hit h = trace(kEye, d);
-            const double dir[3] = {d.x, d.y, d.z};
-            Vec3 L{0, 0, 0};
-            for (const Light &l : kLights) {
-                const double lp[3] = {l.pos.x, l.pos.y, l.pos.z};
-                auto q = scatterlut::airlight_query_from_points(eye, dir, lp, h.s, fog.sigma_s[0], fog.sigma_a[0], l.I0);
-                L = L + airlight(q) * l.color;
-            }
-            if (h.slab) {
-                Vec3 p = kEye + h.s * d;
-                for (const Light &l : kLights) {
-                    scatterlut::NearLightQuery q;
-                    q.sigma_s_per_m = kSlabSigmaS;
-                    q.sigma_a_per_m = kSlabSigmaA;
-                    q.intensity_W_per_sr = l.I0;
-                    q.normal[0] = 0, q.normal[1] = 0, q.normal[2] = 1;
-                    q.eye_dir[0] = -d.x, q.eye_dir[1] = -d.y, q.eye_dir[2] = -d.z;
-                    Vec3 rel = l.pos - p;
-                    q.light_rel_m[0] = rel.x, q.light_rel_m[1] = rel.y, q.light_rel_m[2] = rel.z;
-                    q.length_m = kInf;
-                    // Fog attenuates the light on its way to the slab and the slab's glow on
-                    // its way to the camera (the same factor in both renders).
-                    const double path_m = std::sqrt(dot(rel, rel)) + h.s;
-                    const Vec3 att{std::exp(-fog_t.x * path_m), std::exp(-fog_t.y * path_m),
-                                   std::exp(-fog_t.z * path_m)};
-                    const double Ln = near_light(q);
-                    L = L + (grey(Ln) * att) * Vec3{l.color.x * kSlabColor.x, l.color.y * kSlabColor.y,
-                                                    l.color.z * kSlabColor.z};
-                }
-            }
-            double *o = &img[(size_t(j) * kWidth + i) * 3];
-            o[0] = L.x, o[1] = L.y, o[2] = L.z;
+    const auto pixel = [&](int i, int j) {
+        double px = (2 * (i + 0.5) / width - 1) * th * aspect;
+        double py = (1 - 2 * (j + 0.5) / height) * th;
+        Vec3 d = normalize(fwd + px * right + py * up);
+        Hit h = trace(kEye, d, picture.street);
+        const double dir[3] = {d.x, d.y, d.z};
+        Vec3 L{0, 0, 0};
+        for (const Light &l : kLights) {
+            const double lp[3] = {l.pos.x, l.pos.y, l.pos.z};
+            auto q = scatterlut::airlight_query_from_points(eye, dir, lp, h.s, fog.sigma_s[0], fog.sigma_a[0], l.I0);
+            L = L + airlight(q) * l.color;
         }
+        if (h.slab) {
+            Vec3 p = kEye + h.s * d;
+            for (const Light &l : kLights) {
+                scatterlut::NearLightQuery q;
+                q.sigma_s_per_m = kSlabSigmaS;
+                q.sigma_a_per_m = kSlabSigmaA;
+                q.intensity_W_per_sr = l.I0;
+                q.normal[0] = 0, q.normal[1] = 0, q.normal[2] = 1;
+                q.eye_dir[0] = -d.x, q.eye_dir[1] = -d.y, q.eye_dir[2] = -d.z;
+                Vec3 rel = l.pos - p;
+                q.light_rel_m[0] = rel.x, q.light_rel_m[1] = rel.y, q.light_rel_m[2] = rel.z;
+                q.length_m = kInf;
+                // Fog attenuates the light on its way to the slab and the slab's glow on
+                // its way to the camera (the same factor in both renders).
+                const double path_m = std::sqrt(dot(rel, rel)) + h.s;
+                const Vec3 att{std::exp(-fog_t.x * path_m), std::exp(-fog_t.y * path_m),
+                               std::exp(-fog_t.z * path_m)};
+                const double Ln = near_light(q);
+                L = L + (grey(Ln) * att) * Vec3{l.color.x * kSlabColor.x, l.color.y * kSlabColor.y,
+                                                l.color.z * kSlabColor.z};
+            }
+        }
+        if (picture.street && h.surface != Surface::none && std::isfinite(h.s)) {
+            // The street's surfaces: the radiance of each lamp's light reaching the point
+            // directly and scattered by the fog (Sun et al. 2005), seen through the fog.
+            // The view ray's own airlight is the sum above.
+            const Vec3 p = kEye + h.s * d;
+            const StreetMaterial m = street_material(h.surface);
+            scatterlut::SurfaceLighting s;
+            s.point_m[0] = p.x, s.point_m[1] = p.y, s.point_m[2] = p.z;
+            s.normal[0] = h.normal.x, s.normal[1] = h.normal.y, s.normal[2] = h.normal.z;
+            s.viewer_m[0] = kEye.x, s.viewer_m[1] = kEye.y, s.viewer_m[2] = kEye.z;
+            for (const Light &l : kLights) {
+                s.light_m[0] = l.pos.x, s.light_m[1] = l.pos.y, s.light_m[2] = l.pos.z;
+                s.intensity_W_per_sr = l.I0;
+                L = L + grey(surface(s, m.reflectance)) * (l.color * m.colour);
+            }
+        }
+        double *o = &img[(size_t(j) * width + i) * 3];
+        o[0] = L.x, o[1] = L.y, o[2] = L.z;
+    };
+    const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
+    std::vector<std::exception_ptr> failed(static_cast<size_t>(threads));
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t)
+        pool.emplace_back([&, t] {
+            try {
+                for (int j = t; j < height; j += threads)
+                    for (int i = 0; i < width; ++i) pixel(i, j);
+            } catch (...) {
+                failed[size_t(t)] = std::current_exception();
+            }
+        });
+    for (std::thread &t : pool) t.join();
+    for (const std::exception_ptr &e : failed)
+        if (e) std::rethrow_exception(e);
     return img;
 }
 
@@ -192,33 +292,35 @@ double psnr(double mse, double peak) { return mse > 0 ? 10 * std::log10(peak * p
 // Renders one picture pair (table, exact) of the street in `fog`, writes <stem>table.png and
 // <stem>exact.png (the exposure from the exact image), prints times and PSNRs; false if the
 // 8-bit PSNR is below 45 dB.
-template <class TableAir, class ExactAir, class TableNear, class ExactNear>
-bool render_pair(const std::string &dir, const std::string &stem, const char *title, const Medium &fog,
-                 TableAir table_air, ExactAir exact_air, TableNear table_near, ExactNear exact_near) {
+template <class TableAir, class ExactAir, class TableNear, class ExactNear, class TableSurf, class ExactSurf>
+bool render_pair(const std::string &dir, const std::string &stem, const char *title, const Picture &picture,
+                 const Medium &fog, TableAir table_air, ExactAir exact_air, TableNear table_near, ExactNear exact_near,
+                 TableSurf table_surface, ExactSurf exact_surface, double *exposure_out = nullptr) {
     using clk = std::chrono::steady_clock;
+    const int width = picture.width, height = picture.height;
     auto t0 = clk::now();
-    auto table_img = render(fog, table_air, table_near);
+    auto table_img = render(picture, fog, table_air, table_near, table_surface);
     auto t1 = clk::now();
-    auto exact_img = render(fog, exact_air, exact_near);
+    auto exact_img = render(picture, fog, exact_air, exact_near, exact_surface);
     auto t2 = clk::now();
     const double ms_table = std::chrono::duration<double, std::milli>(t1 - t0).count();
     const double ms_exact = std::chrono::duration<double, std::milli>(t2 - t1).count();
 
-    // Exposure from the exact image (median of the finite values → 0.025 after exposure: a night scene
-    // whose lamps and lit slab stand out of the haze),
-    // applied to both images.
+    // Exposure from the exact image (median of the finite values → picture.key after exposure,
+    // 0.025: a night scene whose lamps and lit slab stand out of the haze), applied to both images.
     std::vector<double> v;
     double peak = 0;
     for (double x : exact_img)
         if (std::isfinite(x)) v.push_back(x), peak = std::max(peak, x);
     std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    const double exposure = 0.025 / std::max(v[v.size() / 2], 1e-30);
+    const double exposure = picture.key / std::max(v[v.size() / 2], 1e-30);
+    if (exposure_out) *exposure_out = exposure;
 
     auto t8 = tone_map(table_img, exposure), e8 = tone_map(exact_img, exposure);
     // Atomic writes; a failure (std::system_error naming the path) ends in main's catch.
     const std::string table_png = dir + "/" + stem + "table.png", exact_png = dir + "/" + stem + "exact.png";
-    scatterlut::write_file_atomic(table_png, scatterlut::png::encode_rgb8(t8, kWidth, kHeight));
-    scatterlut::write_file_atomic(exact_png, scatterlut::png::encode_rgb8(e8, kWidth, kHeight));
+    scatterlut::write_file_atomic(table_png, scatterlut::png::encode_rgb8(t8, width, height));
+    scatterlut::write_file_atomic(exact_png, scatterlut::png::encode_rgb8(e8, width, height));
 
     double mse8 = 0, mse_lin = 0, max_rel = 0;
     size_t n_lin = 0, max8 = 0;
@@ -238,9 +340,10 @@ bool render_pair(const std::string &dir, const std::string &stem, const char *ti
     const double p8 = psnr(mse8, 255), plin = psnr(mse_lin, peak);
 
     std::printf("%s\n", title);
-    std::printf("image %dx%d, %zu lights, %zu pixel values\n", kWidth, kHeight, kLights.size(), e8.size());
-    std::printf("time table: %.1f ms  (%.2f us/pixel)\n", ms_table, 1e3 * ms_table / (kWidth * kHeight));
-    std::printf("time exact: %.1f ms  (%.2f us/pixel)\n", ms_exact, 1e3 * ms_exact / (kWidth * kHeight));
+    std::printf("image %dx%d, %zu lights, %zu pixel values, %u threads\n", width, height, kLights.size(), e8.size(),
+                std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
+    std::printf("time table: %.1f ms  (%.2f us/pixel)\n", ms_table, 1e3 * ms_table / (width * height));
+    std::printf("time exact: %.1f ms  (%.2f us/pixel)\n", ms_exact, 1e3 * ms_exact / (width * height));
     std::printf("PSNR 8-bit tone-mapped: %.2f dB (max |diff| %zu levels)\n", p8, max8);
     std::printf("exposure %.17g (the web demo's exposure= for the same picture)\n", exposure);
     std::printf("PSNR linear radiance (peak %.4g W/(m2 sr)): %.2f dB; max rel error %.3g\n", peak, plin, max_rel);
@@ -252,25 +355,94 @@ bool render_pair(const std::string &dir, const std::string &stem, const char *ti
     return true;
 }
 
+// The lit street (--street): the grey-fog street with side walls, its ground, walls and far
+// wall lit by every lamp through the fog (scatterlut/surface_radiance.hpp: the direct terms
+// and Sun et al. 2005's scattered terms E_ss and S_n; wet road: a Phong lobe), from G tables
+// and with G by quadrature per pixel and lamp (surface_G_exact, ~1e-10 relative, ~1 ms per
+// call: the expensive part, so the tested pair is small, kStreetWidth × kStreetHeight). The
+// same street from the tables alone at the full 480 × 270 is written beside it
+// (street_full_table.png, the exposure of the pair). The G tables are filled here on the CPU
+// by quadrature (surface_G*_table_by_quadrature) on T ∈ [0, T_max], T_max = σ_t times the
+// farthest lamp–street distance (at a corner of the street's box, where it is largest).
+constexpr int kStreetWidth = 64, kStreetHeight = 36;
+constexpr int kStreetTableT = 24, kStreetTableTheta = 25; // nodes of the G tables (T × θ)
+constexpr double kStreetKey = 0.08; // a brighter key than the first pictures: the lit surfaces
+
+template <class TableAir, class ExactAir, class TableNear, class ExactNear>
+bool render_street(const std::string &dir, TableAir table_air, ExactAir exact_air, TableNear table_near,
+                   ExactNear exact_near) {
+    using clk = std::chrono::steady_clock;
+    double far_m = 0;
+    for (const Light &l : kLights)
+        for (double x : {-kStreetHalfWidth, kStreetHalfWidth})
+            for (double y : {0.0, kWallH})
+                for (double z : {kWallZ, kSideWallZ0}) {
+                    const Vec3 r = Vec3{x, y, z} - l.pos;
+                    far_m = std::max(far_m, std::sqrt(dot(r, r)));
+                }
+    const double T_max = (kFogSigmaS + kFogSigmaA) * far_m;
+    const auto t0 = clk::now();
+    const scatterlut::SurfaceTable g0(scatterlut::surface_G_table_by_quadrature(1, T_max, kStreetTableT, kStreetTableTheta));
+    const scatterlut::SurfaceTable gn(
+        scatterlut::surface_G_table_by_quadrature(kWetExponent, T_max, kStreetTableT, kStreetTableTheta));
+    const double ms_tables = std::chrono::duration<double, std::milli>(clk::now() - t0).count();
+    std::printf("lit street: G0 and G%d tables %dx%d on T <= %.3f filled by quadrature in %.1f ms\n", kWetExponent,
+                kStreetTableT, kStreetTableTheta, T_max, ms_tables);
+    scatterlut::SurfaceTables tables;
+    tables.diffuse = &g0;
+    tables.specular = &gn;
+    const auto table_surface = [&](const scatterlut::SurfaceLighting &s, const scatterlut::SurfaceMaterial &m) {
+        return scatterlut::surface_radiance(tables, s, kFogSigmaS, kFogSigmaA, m).total();
+    };
+    const auto exact_surface = [](const scatterlut::SurfaceLighting &s, const scatterlut::SurfaceMaterial &m) {
+        return scatterlut::surface_radiance_exact(s, kFogSigmaS, kFogSigmaA, m).total();
+    };
+    Picture picture;
+    picture.width = kStreetWidth;
+    picture.height = kStreetHeight;
+    picture.street = true;
+    picture.key = kStreetKey;
+    double exposure = 0;
+    const bool ok = render_pair(dir, "street_", "lit street: ground and walls lit through the grey fog (surface_G)",
+                                picture, kGreyFog, table_air, exact_air, table_near, exact_near, table_surface,
+                                exact_surface, &exposure);
+    Picture full = picture;
+    full.width = kWidth;
+    full.height = kHeight;
+    const auto t1 = clk::now();
+    const std::vector<double> img = render(full, kGreyFog, table_air, table_near, table_surface);
+    const double ms_full = std::chrono::duration<double, std::milli>(clk::now() - t1).count();
+    const std::string full_png = dir + "/street_full_table.png";
+    scatterlut::write_file_atomic(full_png, scatterlut::png::encode_rgb8(tone_map(img, exposure), kWidth, kHeight));
+    std::printf("lit street %dx%d from the tables: %.1f ms; wrote %s\n", kWidth, kHeight, ms_full, full_png.c_str());
+    return ok;
+}
+
 } // namespace
 
 int main(int argc, char **argv) {
-    if (argc != 4 && argc != 5) {
-        std::fprintf(stderr, "usage: %s airlight_F.slut near_light_E3.slut out_dir [airlight_Fg_g0.85.slut]\n",
+    std::vector<std::string> args;
+    bool street = false;
+    for (int k = 1; k < argc; ++k) {
+        if (std::string(argv[k]) == "--street") street = true;
+        else args.emplace_back(argv[k]);
+    }
+    if (args.size() != 3 && args.size() != 4) {
+        std::fprintf(stderr, "usage: %s airlight_F.slut near_light_E3.slut out_dir [airlight_Fg_g0.85.slut] [--street]\n",
                      argv[0]);
         return 2;
     }
     try {
-        const scatterlut::AirlightTable fog(scatterlut::load_table(argv[1]));
-        const scatterlut::NearLightTable wax(scatterlut::load_table(argv[2]));
-        const std::string dir = argv[3];
+        const scatterlut::AirlightTable fog(scatterlut::load_table(args[0]));
+        const scatterlut::NearLightTable wax(scatterlut::load_table(args[1]));
+        const std::string dir = args[2];
         // The anisotropic table is read (and checked) before anything is rendered or written.
         std::unique_ptr<scatterlut::AirlightHgTable> fog_hg;
-        if (argc == 5) {
-            fog_hg = std::make_unique<scatterlut::AirlightHgTable>(scatterlut::load_table(argv[4]));
+        if (args.size() == 4) {
+            fog_hg = std::make_unique<scatterlut::AirlightHgTable>(scatterlut::load_table(args[3]));
             if (fog_hg->phase_g() != kHgPhaseG) {
                 std::fprintf(stderr, "render_fog: %s: the table's phase.g is %.17g, the coloured fog's is %.17g\n",
-                             argv[4], fog_hg->phase_g(), kHgPhaseG);
+                             args[3].c_str(), fog_hg->phase_g(), kHgPhaseG);
                 return 2;
             }
         }
@@ -278,17 +450,20 @@ int main(int argc, char **argv) {
         const auto exact_near = [](const scatterlut::NearLightQuery &q) {
             return scatterlut::near_light_radiance_exact(q);
         };
+        const auto table_air = [&](const scatterlut::AirlightQuery &q) { return grey(fog.radiance(q)); };
+        const auto exact_air = [](const scatterlut::AirlightQuery &q) {
+            return grey(scatterlut::airlight_radiance_exact(q));
+        };
+        const auto unlit = [](const scatterlut::SurfaceLighting &, const scatterlut::SurfaceMaterial &) { return 0.0; };
 
-        bool ok = render_pair(
-            dir, "", "isotropic grey fog (airlight_F)", kGreyFog,
-            [&](const scatterlut::AirlightQuery &q) { return grey(fog.radiance(q)); },
-            [](const scatterlut::AirlightQuery &q) { return grey(scatterlut::airlight_radiance_exact(q)); },
-            table_near, exact_near);
+        bool ok = render_pair(dir, "", "isotropic grey fog (airlight_F)", Picture{}, kGreyFog, table_air, exact_air,
+                              table_near, exact_near, unlit, unlit);
 
         if (fog_hg) {
             std::printf("\n");
             const bool ok_hg = render_pair(
-                dir, "hg_", "forward-scattering coloured fog (airlight_Fg, g = 0.85, per-channel sigma)", kColouredFog,
+                dir, "hg_", "forward-scattering coloured fog (airlight_Fg, g = 0.85, per-channel sigma)", Picture{},
+                kColouredFog,
                 [&](const scatterlut::AirlightQuery &q) {
                     return vec(fog_hg->radiance_rgb(q, kColouredFog.sigma_s, kColouredFog.sigma_a));
                 },
@@ -296,8 +471,13 @@ int main(int argc, char **argv) {
                     return vec(scatterlut::airlight_radiance_exact_rgb(q, kColouredFog.sigma_s, kColouredFog.sigma_a,
                                                                       kHgPhaseG));
                 },
-                table_near, exact_near);
+                table_near, exact_near, unlit, unlit);
             ok = ok && ok_hg;
+        }
+
+        if (street) {
+            std::printf("\n");
+            ok = render_street(dir, table_air, exact_air, table_near, exact_near) && ok;
         }
         return ok ? 0 : 1;
     } catch (const std::exception &e) {
