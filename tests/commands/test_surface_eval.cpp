@@ -1,7 +1,7 @@
 // eval's surface quantities (host/src/kinds/surface_runtime.cpp; docs/PHYSICS.md §1.5), run as
 // the built executable without tables: "surface" (E_ss) and "surface_specular" (S_n) answer
 // "exact" against the mpmath values of tests/reference/surface_ref.json, "table": null (no
-// surface table kind yet), the direct term and, for "surface", the no-extinction bound; bad
+// --table given), the direct term and, for "surface", the no-extinction bound; bad
 // input is an error line naming the field. With --table of saved surface_G tables (filled by
 // quadrature, scatterlut/surface_table.hpp) "table" answers from the table of the query's
 // exponent (1 for "surface") where T = σ_t D lies in its domain, null otherwise.

@@ -86,6 +86,8 @@ TEST(SurfaceTables, GenerateValidateAndEvalWithinTheScenesError) {
     const RunResult val = slut_test::run_scatterlut("validate --nodes 200 --points 2000 " + dir + "/surface_G0.slut " + dir +
                                                     "/surface_G20.slut");
     EXPECT_EQ(val.exit_code, 0) << val.out << val.err;
+    // The node check names the surface kind's own independent reference, not the airlight's.
+    EXPECT_NE(val.out.find("exp_sinh along each ray"), std::string::npos) << val.out;
     std::printf("%s", val.out.c_str());
 
     // Queries over the scene's domain (D ≤ 20 m, every θ), both tables loaded.

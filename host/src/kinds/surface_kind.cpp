@@ -222,6 +222,9 @@ public:
         };
     }
     const char *runtime_class() const override { return "SurfaceTable"; }
+    const char *independent_reference() const override {
+        return "Boost.Math Gauss-Kronrod 31 over gamma, exp_sinh along each ray";
+    }
     std::string methods_note() const override {
         return " The surface tables answer irradiance (W/m^2), not radiance: E_ss, the airlight a surface point "
                "receives over its hemisphere (Sun et al. 2005). no_extinction is its exact limit sigma_t -> 0 "

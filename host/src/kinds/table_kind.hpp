@@ -110,6 +110,9 @@ public:
     // validate and report.
     virtual double integration_error(const RuntimeSampler &sampler, const std::vector<NodeIndex> &nodes,
                                      IntegrationReference reference) const = 0;
+    // What IntegrationReference::IndependentGaussKronrod computes for this kind, in words
+    // (validate's output names it).
+    virtual const char *independent_reference() const { return "Boost.Math Gauss-Kronrod 61"; }
     // Interpolated values at `points` random off-node points against quadrature.
     virtual SamplingStats sampling_error(const RuntimeSampler &sampler, int points, uint64_t seed) const = 0;
 
