@@ -394,8 +394,7 @@ Table generate_airlight_table(Device &device, const AirlightPlan &plan, const Pr
     // Accuracy: of the integration, of the storage type, and of sampling with the stored values.
     t.accuracy.integration_max_rel =
         measure_airlight_integration(t, airlight_measurement_nodes(t, 400, 1), IntegrationReference::FinerPanelRule);
-    t.accuracy.storage_max_rel = storage_rounding_max_rel(t, t.storage);
-    for (double &v : t.values) v = round_to_storage(v, t.storage);
+    round_to_table_storage(t);
     SamplingStats s;
     if (plan.phase_g == 0.0) {
         const AirlightTable air(t);
@@ -404,12 +403,8 @@ Table generate_airlight_table(Device &device, const AirlightPlan &plan, const Pr
         const AirlightHgTable air(t);
         s = measure_airlight_sampling(t, [&air](double u, double w) { return air.scaled_tail(u, w); }, 20000, 2);
     }
-    t.accuracy.sampling_max_rel = s.max_rel;
-    t.accuracy.sampling_p99_rel = s.p99_rel;
-    t.accuracy.sampling_median_rel = s.median_rel;
-    t.accuracy.sampling_points = s.points;
-    t.accuracy.sampling_domain = std::string(plan.phase_g == 0.0 ? "Gs(u,w)" : "Gs_g(u,w)") +
-                                 " at uniform random unit coordinates over the whole table";
+    record_sampling(t, s, std::string(plan.phase_g == 0.0 ? "Gs(u,w)" : "Gs_g(u,w)") +
+                              " at uniform random unit coordinates over the whole table");
     return t;
 }
 

@@ -207,19 +207,14 @@ Table generate_table(Device &device, const NearLightPlan &plan, const Provenance
     t.accuracy.integration_max_rel =
         measure_nearlight_integration(Sampler(t), nearlight_measurement_nodes(t, 400, 1),
                                       IntegrationReference::FinerPanelRule);
-    t.accuracy.storage_max_rel = storage_rounding_max_rel(t, t.storage);
-    for (double &v : t.values) v = round_to_storage(v, t.storage);
+    round_to_table_storage(t);
     const SamplingStats s = measure_nearlight_sampling(Sampler(t), 20000, 2);
-    t.accuracy.sampling_max_rel = s.max_rel;
-    t.accuracy.sampling_p99_rel = s.p99_rel;
-    t.accuracy.sampling_median_rel = s.median_rel;
-    t.accuracy.sampling_points = s.points;
     const char *what = plan.phase_g != 0.0 ? "E_g" : "E";
     const char *where = plan.phase_g != 0.0 ? "the attenuation E >= 1e-6" : "E >= 1e-6";
-    t.accuracy.sampling_domain =
-        plan.finite_thickness
-            ? std::string(what) + " at uniform random unit coordinates of T, g, r and log-uniform S where " + where
-            : std::string(what) + " at uniform random unit coordinates where " + where;
+    record_sampling(t, s,
+                    plan.finite_thickness
+                        ? std::string(what) + " at uniform random unit coordinates of T, g, r and log-uniform S where " + where
+                        : std::string(what) + " at uniform random unit coordinates where " + where);
     return t;
 }
 

@@ -83,15 +83,10 @@ Table generate_surface_table(Device &device, const SurfacePlan &plan, const Prov
     t.values = integrate_surface_G(device, t, plan.integration_tolerance);
     t.accuracy.integration_max_rel = measure_surface_integration(
         SurfaceTable(t), surface_measurement_nodes(t, 100, 1), IntegrationReference::FinerPanelRule);
-    t.accuracy.storage_max_rel = storage_rounding_max_rel(t, t.storage);
-    for (double &v : t.values) v = round_to_storage(v, t.storage);
+    round_to_table_storage(t);
     const SamplingStats s = measure_surface_sampling(SurfaceTable(t), 4000, 2);
-    t.accuracy.sampling_max_rel = s.max_rel;
-    t.accuracy.sampling_p99_rel = s.p99_rel;
-    t.accuracy.sampling_median_rel = s.median_rel;
-    t.accuracy.sampling_points = s.points;
-    t.accuracy.sampling_domain = std::string(plan.exponent == 1 ? "G0" : "G_n") +
-                                 "(T, theta) at uniform random unit coordinates of T and theta";
+    record_sampling(t, s, std::string(plan.exponent == 1 ? "G0" : "G_n") +
+                              "(T, theta) at uniform random unit coordinates of T and theta");
     return t;
 }
 

@@ -3,11 +3,15 @@
 #pragma once
 
 #include <cstdio>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <CL/opencl.hpp>
 
+#include "measurement.hpp"
 #include "opencl_device.hpp"
+#include "scatterlut/io.hpp"
 #include "scatterlut/table.hpp"
 
 namespace scatterlut {
@@ -33,6 +37,22 @@ inline void begin_generation(Table &t, const Provenance &provenance, double inte
     char text[32];
     std::snprintf(text, sizeof text, "%.3g", integration_tolerance);
     t.extra["integration.tolerance"] = text;
+}
+
+// Rounds the integrated values to the table's storage type, recording the largest relative
+// error the rounding makes (accuracy.storage_max_rel).
+inline void round_to_table_storage(Table &t) {
+    t.accuracy.storage_max_rel = storage_rounding_max_rel(t, t.storage);
+    for (double &v : t.values) v = round_to_storage(v, t.storage);
+}
+
+// Records a sampling-error measurement of the stored values; `domain` says where its points lie.
+inline void record_sampling(Table &t, const SamplingStats &s, std::string domain) {
+    t.accuracy.sampling_max_rel = s.max_rel;
+    t.accuracy.sampling_p99_rel = s.p99_rel;
+    t.accuracy.sampling_median_rel = s.median_rel;
+    t.accuracy.sampling_points = s.points;
+    t.accuracy.sampling_domain = std::move(domain);
 }
 
 // Sets the five kernel arguments of one axis starting at *arg, advancing it.
