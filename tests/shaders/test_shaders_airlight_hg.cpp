@@ -83,8 +83,9 @@ const scatterlut::AirlightHgTable &table_for(double g) {
 // One GPU query (airlight_gpu_test::Query, 16 floats). mode 0: Gs_g(u, w); 1: table radiance
 // (sigma_s, sigma_a, I0, D, sin gamma, cos gamma, s); 2: exact radiance (the same inputs, no
 // table); 3: the RGB entry point (sigma_s rgb, sigma_a rgb, I0, D, sin gamma, cos gamma, s,
-// channel returned); 4: radiance from points (viewer, dir, light, s, sigma_s, sigma_a, I0).
-enum Mode { kScaledTail = 0, kRadiance = 1, kExact = 2, kRgb = 3, kPoints = 4 };
+// channel returned); 4: radiance from points (viewer, dir, light, s, sigma_s, sigma_a, I0);
+// 5, 6: the thin-medium and distant-light closed forms with the phase (mode 1's inputs, no table).
+enum Mode { kScaledTail = 0, kRadiance = 1, kExact = 2, kRgb = 3, kPoints = 4, kThin = 5, kDistant = 6 };
 
 // The largest change of the stored ln Gs_g across the cell that holds (u, w), the u and the w
 // step added; 0 outside the table (the asymptotic forms serve there).
@@ -158,6 +159,32 @@ std::vector<Query> make_queries(double g) {
         if (peak_only) q.own_tolerance = w_fold_shift(table, q.gpu[1], q.gpu[2]);
         q.label = "Gs";
         out.push_back(q);
+    }
+    // The closed forms with the phase (no table: every g, the peak-only one included) against
+    // airlight_hg_radiance_thin / _distant on the same float inputs: the radiance's random
+    // geometries (gamma -> 0 and -> pi, infinite rays) and the degenerate inputs.
+    {
+        std::vector<std::array<float, 7>> inputs = degenerate_radiance_inputs();
+        for (int i = 0; i < 600; ++i) {
+            Query q;
+            double sigma_t = 0, I0 = 0;
+            random_geometry(rng, &q, &sigma_t, &I0);
+            const double albedo = 0.05 + 0.95 * unit(rng);
+            inputs.push_back({static_cast<float>(albedo * sigma_t), static_cast<float>((1.0 - albedo) * sigma_t),
+                              static_cast<float>(I0), q.gpu[4], q.gpu[5], q.gpu[6], q.gpu[7]});
+        }
+        for (const auto &d : inputs)
+            for (Mode mode : {kThin, kDistant}) {
+                Query q;
+                q.gpu[0] = mode;
+                std::copy(d.begin(), d.end(), q.gpu.begin() + 1);
+                const scatterlut::AirlightQuery cq = cpp_query(d.data());
+                q.reference = mode == kThin ? scatterlut::airlight_hg_radiance_thin(cq, g)
+                                            : scatterlut::airlight_hg_radiance_distant(cq, g);
+                q.optical_distance = mode == kThin ? 0.0 : (static_cast<double>(d[0]) + d[1]) * d[3];
+                q.label = mode == kThin ? "thin" : "distant";
+                out.push_back(q);
+            }
     }
     if (peak_only) return out;
 
@@ -314,6 +341,12 @@ float test_eval(int i) {
         int c = int(q[b + 12]);
         return c == 0 ? L.x : (c == 1 ? L.y : L.z);
     }
+    if (mode == 5)
+        return slut_airlight_hg_radiance_thin(q[b + 1], q[b + 2], q[b + 3], q[b + 4], q[b + 5], q[b + 6], q[b + 7],
+                                              phase_g);
+    if (mode == 6)
+        return slut_airlight_hg_radiance_distant(q[b + 1], q[b + 2], q[b + 3], q[b + 4], q[b + 5], q[b + 6],
+                                                 q[b + 7], phase_g);
     return slut_airlight_hg_radiance_points(SLUT_TEX_ARG(slut_test_table), t,
                                             SLUT_FLOAT3(q[b + 1], q[b + 2], q[b + 3]),
                                             SLUT_FLOAT3(q[b + 4], q[b + 5], q[b + 6]),
@@ -381,6 +414,8 @@ float4 main(float3 world_pos : TEXCOORD0, float3 eye_pos : TEXCOORD1) : SV_Targe
 // difference of two samples).
 constexpr double kTolGs = 1e-5, kTolRadiance = 1e-5, kTolPerOpticalDistance = 4e-7;
 constexpr double kTexelRounding = 1e-5;
+// The closed forms with the phase: PLACEHOLDER
+constexpr double kTolThinPhaseArc = 0.0, kTolPerLogRadiance = 0.0;
 
 #if SLUT_HAVE_EGL
 std::vector<float> run_on_gpu(const std::string &source, double g, std::string *error) {
@@ -405,12 +440,14 @@ void expect_agreement(const std::vector<float> &got, double g, const std::string
     ASSERT_EQ(got.size(), qs.size());
     std::vector<double> reference;
     for (const Query &q : qs) reference.push_back(q.reference);
-    for (const std::string label : {"Gs", "radiance", "exact", "rgb", "points"}) {
+    for (const std::string label : {"Gs", "radiance", "exact", "rgb", "points", "thin", "distant"}) {
         std::vector<size_t> indices;
         for (size_t i = 0; i < qs.size(); ++i)
             if (qs[i].label == label) indices.push_back(i);
         if (indices.empty()) continue; // kPeakOnlyG: G~_g only
         const auto tolerance = [&](size_t i) {
+            if (label == "thin") return kTolRadiance + kTolThinPhaseArc;
+            if (label == "distant") return kTolRadiance + kTolPerLogRadiance * std::fabs(std::log(qs[i].reference));
             return label == "Gs" ? kTolGs + kTexelRounding * qs[i].cell_jump + qs[i].own_tolerance
                                  : kTolRadiance + kTolPerOpticalDistance * qs[i].optical_distance +
                                        2.0 * kTexelRounding * qs[i].cell_jump;
