@@ -372,32 +372,62 @@ SLUT_FN void slut_hg_half_angles(double sin_gamma, double cos_gamma, double *sin
  * from every point and θ = 0, so B_g = ψ_g(0)·s'/(2(1 − s')) for s' < 1 and +∞ for s' ≥ 1
  * (the ray reaches the light); sin(γ/2) < 1e-150 with s' < 1 takes that limit too (relative
  * difference O(γ²)). Every term positive: relative accuracy ~1e-14. */
-SLUT_FN double slut_hg_airlight_bracket(double optical_distance, double sin_half, double cos_half, double s_over_D,
-                                        double g, double refine) {
+SLUT_STRUCT_BEGIN(slut_hg_airlight_segment)
+    int limit;      /* 1: no segment to integrate, the bracket is `value` (s = 0; γ → 0)    */
+    double value;   /* the bracket where limit = 1                                        */
+    double tau_hat; /* τ̂                                                                  */
+    double eps_hat; /* ε̂                                                                  */
+    double mu;      /* μ = λ sin γ                                                        */
+    double z_end;   /* Z = Δ/(D μ) (+∞: an infinite ray)                                  */
+SLUT_STRUCT_END(slut_hg_airlight_segment);
+
+/* The segment of the bracket in the scaled variable (above), or its limit value. */
+SLUT_FN slut_hg_airlight_segment slut_hg_airlight_segment_of(double sin_half, double cos_half, double s_over_D,
+                                                             double g) {
+    slut_hg_airlight_segment seg;
+    seg.limit = 1;
+    seg.value = 0.0;
+    seg.tau_hat = 0.0;
+    seg.eps_hat = 1.0;
+    seg.mu = 1.0;
+    seg.z_end = 0.0;
     double sp = s_over_D;
-    if (!(sp > 0.0)) return 0.0;
+    if (!(sp > 0.0)) return seg;
     int infinite = !(sp <= SLUT_INFINITE_ABOVE) ? 1 : 0;
     if (!(sin_half >= SLUT_SQUARABLE_MIN)) {
         if (infinite != 0 || sp >= 1.0) {
-            if (!(sin_half > 0.0)) return SLUT_HUGE_VAL;
+            if (!(sin_half > 0.0)) {
+                seg.value = SLUT_HUGE_VAL;
+                return seg;
+            }
         } else {
-            return slut_hg_psi_forward(g) * sp / (2.0 * (1.0 - sp));
+            seg.value = slut_hg_psi_forward(g) * sp / (2.0 * (1.0 - sp));
+            return seg;
         }
     }
     double sh2 = sin_half * sin_half;
-    double d_far = (infinite != 0) ? SLUT_HUGE_VAL
-                            : ((sp > 1.0) ? sp * sqrt((1.0 - 1.0 / sp) * (1.0 - 1.0 / sp) + 4.0 * sh2 / sp)
-                                          : sqrt((1.0 - sp) * (1.0 - sp) + 4.0 * sp * sh2));
     int narrow = (cos_half >= sin_half) ? 1 : 0;
-    double tau_hat = (narrow != 0) ? sin_half / cos_half : 1.0;
-    double eps_hat = (narrow != 0) ? 1.0 : cos_half / sin_half;
-    double mu = (narrow != 0) ? 2.0 * sin_half * cos_half : 2.0 * sh2;
-    double z_end;
-    if (infinite != 0) z_end = SLUT_HUGE_VAL;
-    else if (sp >= 1.0) z_end = ((sp - 1.0) + d_far) / mu;
-    else z_end = 2.0 * sp * tau_hat / (d_far + (1.0 - sp)); /* τ̂ = tan(γ/2) or 1 */
-    double K = slut_hg_air_integral(optical_distance * mu, tau_hat, eps_hat, z_end, g, refine);
-    return K / mu;
+    seg.limit = 0;
+    seg.tau_hat = (narrow != 0) ? sin_half / cos_half : 1.0;
+    seg.eps_hat = (narrow != 0) ? 1.0 : cos_half / sin_half;
+    seg.mu = (narrow != 0) ? 2.0 * sin_half * cos_half : 2.0 * sh2;
+    if (infinite != 0) {
+        seg.z_end = SLUT_HUGE_VAL;
+        return seg;
+    }
+    double d_far = (sp > 1.0) ? sp * sqrt((1.0 - 1.0 / sp) * (1.0 - 1.0 / sp) + 4.0 * sh2 / sp)
+                              : sqrt((1.0 - sp) * (1.0 - sp) + 4.0 * sp * sh2);
+    if (sp >= 1.0) seg.z_end = ((sp - 1.0) + d_far) / seg.mu;
+    else seg.z_end = 2.0 * sp * seg.tau_hat / (d_far + (1.0 - sp)); /* τ̂ = tan(γ/2) or 1 */
+    return seg;
+}
+
+SLUT_FN double slut_hg_airlight_bracket(double optical_distance, double sin_half, double cos_half, double s_over_D,
+                                        double g, double refine) {
+    slut_hg_airlight_segment seg = slut_hg_airlight_segment_of(sin_half, cos_half, s_over_D, g);
+    if (seg.limit != 0) return seg.value;
+    double K = slut_hg_air_integral(optical_distance * seg.mu, seg.tau_hat, seg.eps_hat, seg.z_end, g, refine);
+    return K / seg.mu;
 }
 
 /* The radiance from its bracket: σ_s/(4π)·I0·(2/D)·e^{−σ_t D}·B_g, W/(m²·sr) for I0 in W/sr,
@@ -443,37 +473,22 @@ SLUT_FN double slut_hg_airlight_radiance(double sigma_s, double sigma_a, double 
  * fixed rule (relative error ≤ 1e-13 in double, measured against the adaptive quadrature:
  * tests/kernels/test_anisotropic.cpp); the bracket is exact for σ_t = 0. */
 SLUT_FN double slut_hg_airlight_bracket_thin(double sin_half, double cos_half, double s_over_D, double g) {
-    double sp = s_over_D;
-    if (!(sp > 0.0)) return 0.0;
-    int infinite = !(sp <= SLUT_INFINITE_ABOVE) ? 1 : 0;
-    if (!(sin_half >= SLUT_SQUARABLE_MIN)) {
-        if (infinite != 0 || sp >= 1.0) {
-            if (!(sin_half > 0.0)) return SLUT_HUGE_VAL;
-        } else {
-            return slut_hg_psi_forward(g) * sp / (2.0 * (1.0 - sp));
-        }
-    }
-    double sh2 = sin_half * sin_half;
-    int narrow = (cos_half >= sin_half) ? 1 : 0;
-    double tau_hat = (narrow != 0) ? sin_half / cos_half : 1.0;
-    double eps_hat = (narrow != 0) ? 1.0 : cos_half / sin_half;
-    double mu = (narrow != 0) ? 2.0 * sin_half * cos_half : 2.0 * sh2;
+    slut_hg_airlight_segment seg = slut_hg_airlight_segment_of(sin_half, cos_half, s_over_D, g);
+    if (seg.limit != 0) return seg.value;
+    double tau = seg.tau_hat, eps = seg.eps_hat;
     double arc_half; /* v1 − v2 */
     double K0;       /* ∫_0^Z dz/(ε̂² + (τ̂ + z)²) */
-    if (infinite != 0) {
-        arc_half = atan2(eps_hat, tau_hat);
-        K0 = (eps_hat > 0.0) ? arc_half / eps_hat : 1.0 / tau_hat;
+    if (seg.z_end > SLUT_INFINITE_ABOVE) {
+        arc_half = atan2(eps, tau);
+        K0 = (eps > 0.0) ? arc_half / eps : 1.0 / tau;
     } else {
-        double d_far = (sp > 1.0) ? sp * sqrt((1.0 - 1.0 / sp) * (1.0 - 1.0 / sp) + 4.0 * sh2 / sp)
-                                  : sqrt((1.0 - sp) * (1.0 - sp) + 4.0 * sp * sh2);
-        double z_end = (sp >= 1.0) ? ((sp - 1.0) + d_far) / mu : 2.0 * sp * tau_hat / (d_far + (1.0 - sp));
-        double den = eps_hat * eps_hat + tau_hat * (tau_hat + z_end);
-        arc_half = atan2(z_end * eps_hat, den);
-        K0 = (eps_hat > 0.0) ? arc_half / eps_hat : z_end / den;
+        double den = eps * eps + tau * (tau + seg.z_end);
+        arc_half = atan2(seg.z_end * eps, den);
+        K0 = (eps > 0.0) ? arc_half / eps : seg.z_end / den;
     }
     double theta0 = 2.0 * atan2(sin_half, cos_half);
     double theta1 = fmin(theta0 + 2.0 * arc_half, SLUT_PI);
-    return K0 / mu * slut_hg_psi_arc_mean(g, theta0, theta1);
+    return K0 / seg.mu * slut_hg_psi_arc_mean(g, theta0, theta1);
 }
 
 /* The thin-medium airlight with the phase, W/(m²·sr) (arguments as slut_hg_airlight_radiance):

@@ -706,7 +706,7 @@ TEST(AnisotropicNearLight, ThinPhaseMeanMatchesTheQuadrature) {
 //    adaptive quadrature of the segment's integral at σ_t = 0, slut_hg_airlight_bracket(0, …),
 //    within 1e-12 (γ from 1e-9 to π, s/D from 1e-5 to 1e3 and infinite);
 //  - each is the exact radiance (Boost.Math quadrature of the physical integral) in its limit:
-//    thin at σ_t (D + s) = 1e-9 (1e-8), distant at D = 1e5 s (1e-4: first order in s/D);
+//    thin at σ_t (D + s) = 1e-9 (1e-8), distant at D = 1e5 s, σ_t D = 1 (1e-4: first order in s/D);
 //  - the thin form never falls below the exact radiance (it drops the extinction).
 TEST(AnisotropicAirlight, ThinAndDistantFormsInTheirLimits) {
     double worst_bracket = 0, worst_thin = 0, worst_distant = 0;
@@ -733,9 +733,12 @@ TEST(AnisotropicAirlight, ThinAndDistantFormsInTheirLimits) {
                 const double dense = scatterlut::airlight_hg_radiance_thin(air_query(0.3, 0.1, 2.0, D, gamma, s), g);
                 EXPECT_GE(dense, ref_airlight_hg(0.3, 0.1, 2.0, D, gamma, s, g)) << "g " << g << " gamma " << gamma;
             }
-            const double s = 0.5, D = 5e4;
-            const double distant = scatterlut::airlight_hg_radiance_distant(air_query(0.02, 0.01, 2.0, D, gamma, s), g);
-            const double exact = ref_airlight_hg(0.02, 0.01, 2.0, D, gamma, s, g);
+            const double s_far = 0.5, D_far = 5e4;
+            // σ_t D = 1, σ_t s = 1e-5 (the distant form keeps the extinction along both legs).
+            const double distant =
+                scatterlut::airlight_hg_radiance_distant(air_query(1.5e-5, 0.5e-5, 2.0, D_far, gamma, s_far), g);
+            const double exact = ref_airlight_hg(1.5e-5, 0.5e-5, 2.0, D_far, gamma, s_far, g);
+            ASSERT_GT(exact, 0.0);
             worst_distant = std::max(worst_distant, rel(distant, exact));
             EXPECT_LT(rel(distant, exact), 1e-4) << "g " << g << " gamma " << gamma;
         }

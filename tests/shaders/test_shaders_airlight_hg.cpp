@@ -87,6 +87,16 @@ const scatterlut::AirlightHgTable &table_for(double g) {
 // 5, 6: the thin-medium and distant-light closed forms with the phase (mode 1's inputs, no table).
 enum Mode { kScaledTail = 0, kRadiance = 1, kExact = 2, kRgb = 3, kPoints = 4, kThin = 5, kDistant = 6 };
 
+// A query of the seven radiance inputs d (sigma_s, sigma_a, I0, D, sin gamma, cos gamma, s) in
+// one of the modes that take them (1, 2, 5, 6), with its optical distance sigma_t D.
+Query inputs_query(Mode mode, const std::array<float, 7> &d) {
+    Query q;
+    q.gpu[0] = mode;
+    std::copy(d.begin(), d.end(), q.gpu.begin() + 1);
+    q.optical_distance = (static_cast<double>(d[0]) + d[1]) * d[3];
+    return q;
+}
+
 // The largest change of the stored ln Gs_g across the cell that holds (u, w), the u and the w
 // step added; 0 outside the table (the asymptotic forms serve there).
 double cell_jump(const scatterlut::AirlightHgTable &table, double u, double w) {
@@ -163,25 +173,24 @@ std::vector<Query> make_queries(double g) {
     // The closed forms with the phase (no table: every g, the peak-only one included) against
     // airlight_hg_radiance_thin / _distant on the same float inputs: the radiance's random
     // geometries (gamma -> 0 and -> pi, infinite rays) and the degenerate inputs.
+    // Their own random stream, so that the other queries stay what they were.
     {
+        std::mt19937_64 closed_rng(7771 + static_cast<uint64_t>(std::lround(100 * (g + 1))));
         std::vector<std::array<float, 7>> inputs = degenerate_radiance_inputs();
         for (int i = 0; i < 600; ++i) {
-            Query q;
+            Query geometry; // random_geometry's D, sin gamma, cos gamma, s in gpu[4..7]
             double sigma_t = 0, I0 = 0;
-            random_geometry(rng, &q, &sigma_t, &I0);
-            const double albedo = 0.05 + 0.95 * unit(rng);
-            inputs.push_back({static_cast<float>(albedo * sigma_t), static_cast<float>((1.0 - albedo) * sigma_t),
-                              static_cast<float>(I0), q.gpu[4], q.gpu[5], q.gpu[6], q.gpu[7]});
+            random_geometry(closed_rng, &geometry, &sigma_t, &I0);
+            const float sigma_s = static_cast<float>(sigma_t * (0.05 + 0.95 * unit(closed_rng)));
+            inputs.push_back({sigma_s, static_cast<float>(sigma_t - sigma_s), static_cast<float>(I0), geometry.gpu[4],
+                              geometry.gpu[5], geometry.gpu[6], geometry.gpu[7]});
         }
         for (const auto &d : inputs)
             for (Mode mode : {kThin, kDistant}) {
-                Query q;
-                q.gpu[0] = mode;
-                std::copy(d.begin(), d.end(), q.gpu.begin() + 1);
+                Query q = inputs_query(mode, d);
                 const scatterlut::AirlightQuery cq = cpp_query(d.data());
                 q.reference = mode == kThin ? scatterlut::airlight_hg_radiance_thin(cq, g)
                                             : scatterlut::airlight_hg_radiance_distant(cq, g);
-                q.optical_distance = mode == kThin ? 0.0 : (static_cast<double>(d[0]) + d[1]) * d[3];
                 q.label = mode == kThin ? "thin" : "distant";
                 out.push_back(q);
             }
@@ -223,12 +232,9 @@ std::vector<Query> make_queries(double g) {
     }
     for (const auto &d : limits)
         for (Mode mode : {kRadiance, kExact}) {
-            Query q;
-            q.gpu[0] = mode;
-            std::copy(d.begin(), d.end(), q.gpu.begin() + 1);
+            Query q = inputs_query(mode, d);
             const scatterlut::AirlightQuery cq = cpp_query(d.data());
             q.reference = mode == kRadiance ? table.radiance(cq) : scatterlut::airlight_radiance_exact(cq, g);
-            q.optical_distance = (static_cast<double>(d[0]) + d[1]) * d[3];
             q.label = mode == kRadiance ? "radiance" : "exact";
             out.push_back(q);
         }
