@@ -60,7 +60,7 @@ SLUT_FN double slut_hg_nl_psi(double phase_g, double dl, double eta, double sg2)
  * The thin form is the isotropic one times this (near_light_radiance_thin(q, phase_g), the
  * snippet's slut_near_light_hg_radiance_thin): exact as σ_t s → 0 and as σ_t l → 0.
  * kernels/slut_phase_arc.h's fixed rule: within 1e-13 of slut_hg_nl_E(0, g, r, s/l) in double
- * (measured: tests/kernels/test_anisotropic.cpp, PhaseArcMeanFixedRule). */
+ * (measured: tests/kernels/test_anisotropic.cpp, ThinPhaseMeanMatchesTheQuadrature). */
 SLUT_FN double slut_hg_nl_thin_psi_mean(double phase_g, double g, double S_over_T) {
     g = slut_clamp(g, -1.0, 1.0);
     double sg = sqrt((1.0 - fabs(g)) * (1.0 + fabs(g)));
