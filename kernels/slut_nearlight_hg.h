@@ -58,7 +58,7 @@ SLUT_FN double slut_hg_nl_psi(double phase_g, double dl, double eta, double sg2)
  *   E_g(T = 0) = M_{phase_g}(θ(0), θ(s/l)),   θ(τ) = atan2(√(1 − g²), −(τ + g)),
  * from θ(0) = acos(−g) at the entry point to π for a thick medium (S_over_T = s/l > 1e300).
  * The thin form is the isotropic one times this (near_light_radiance_thin(q, phase_g), the
- * snippet's slut_near_light_hg_radiance_thin): exact as σ_t s → 0 and as σ_t l → 0.
+ * snippet's slut_near_light_hg_radiance_thin): exact as σ_t s → 0.
  * kernels/slut_phase_arc.h's fixed rule: within 1e-13 of slut_hg_nl_E(0, g, r, s/l) in double
  * (measured: tests/kernels/test_anisotropic.cpp, ThinPhaseMeanMatchesTheQuadrature). */
 SLUT_FN double slut_hg_nl_thin_psi_mean(double phase_g, double g, double S_over_T) {
@@ -67,6 +67,15 @@ SLUT_FN double slut_hg_nl_thin_psi_mean(double phase_g, double g, double S_over_
     double theta0 = atan2(sg, -g);
     double theta1 = (S_over_T > SLUT_INFINITE_ABOVE) ? SLUT_PI : atan2(sg, -(S_over_T + g));
     return slut_hg_psi_arc_mean(phase_g, theta0, fmax(theta1, theta0));
+}
+
+/* The phase's factor of the distant-light form (Gath 2008 eq. 5 with the phase): the light's
+ * rays taken parallel over the path, θ is the one angle at the entry point, cos θ = −g, and the
+ * isotropic form is multiplied by ψ(θ) (near_light_radiance_distant(q, phase_g), the snippet's
+ * slut_near_light_hg_radiance_distant). Exact as l → ∞. */
+SLUT_FN double slut_hg_nl_distant_psi(double phase_g, double g) {
+    g = slut_clamp(g, -1.0, 1.0);
+    return slut_hg_nl_psi(phase_g, g, 1.0, (1.0 - fabs(g)) * (1.0 + fabs(g)));
 }
 
 #ifndef SLUT_SHADER /* the quadrature: the generator's, the runtime's and the tests' (double only) */

@@ -87,9 +87,8 @@ double near_light_radiance_distant(const NearLightQuery &q, double phase_g) {
     const double iso = near_light_radiance_distant(q);
     if (phase_g == 0.0 || !(iso > 0.0) || !std::isfinite(iso)) return iso;
     const slut_nl_params p = geometry(q);
-    // θ at the entry point: cos θ = −ω·ω_l = −g (kernels/slut_nearlight_hg.h at τ = 0).
-    const double sg2 = (1.0 - std::fabs(p.g)) * (1.0 + std::fabs(p.g));
-    return iso * slut_hg_nl_psi(phase_g, p.g, 1.0, sg2);
+    // ψ at the entry point, cos θ = −ω·ω_l = −g (kernels/slut_nearlight_hg.h).
+    return iso * slut_hg_nl_distant_psi(phase_g, p.g);
 }
 
 NearLightHgTable::NearLightHgTable(Table table)
