@@ -32,6 +32,7 @@
 #include "slut_compat.h"
 #include "slut_phase.h"
 #include "slut_nearlight.h" /* slut_nl_H_scaled, slut_nl_inv_square_integral; slut_gl16_x/w */
+#include "slut_phase_arc.h" /* the thin-medium form: the phase's mean over the path's arc */
 
 #define SLUT_HG_NL_ELLIPSE 2.0   /* min (dist(a) + dist(b))/(b − a) for the poles of 1/η² */
 #define SLUT_HG_NL_EFOLDS 12.0   /* max e-folds of the exponent per panel                */
@@ -49,6 +50,32 @@ SLUT_FN double slut_hg_nl_psi(double phase_g, double dl, double eta, double sg2)
         s2 = sg2 / (eta - dl) / (2.0 * eta);
     }
     return slut_hg_psi_half(phase_g, s2, c2);
+}
+
+/* The phase's factor of the thin-medium form (Gath 2008 §4.2 with the phase): without
+ * attenuation E_g is the ĥ⁻²-weighted mean of ψ over the path, and ĥ⁻² dτ = dθ/√(1 − g²) makes
+ * that the plain mean of ψ over the scattering angles the path sweeps,
+ *   E_g(T = 0) = M_{phase_g}(θ(0), θ(s/l)),   θ(τ) = atan2(√(1 − g²), −(τ + g)),
+ * from θ(0) = acos(−g) at the entry point to π for a thick medium (S_over_T = s/l > 1e300).
+ * The thin form is the isotropic one times this (near_light_radiance_thin(q, phase_g), the
+ * snippet's slut_near_light_hg_radiance_thin): exact as σ_t s → 0.
+ * kernels/slut_phase_arc.h's fixed rule: within 1e-13 of slut_hg_nl_E(0, g, r, s/l) in double
+ * (measured: tests/kernels/test_anisotropic.cpp, ThinPhaseMeanMatchesTheQuadrature). */
+SLUT_FN double slut_hg_nl_thin_psi_mean(double phase_g, double g, double S_over_T) {
+    g = slut_clamp(g, -1.0, 1.0);
+    double sg = sqrt((1.0 - fabs(g)) * (1.0 + fabs(g)));
+    double theta0 = atan2(sg, -g);
+    double theta1 = (S_over_T > SLUT_INFINITE_ABOVE) ? SLUT_PI : atan2(sg, -(S_over_T + g));
+    return slut_hg_psi_arc_mean(phase_g, theta0, fmax(theta1, theta0));
+}
+
+/* The phase's factor of the distant-light form (Gath 2008 eq. 5 with the phase): the light's
+ * rays taken parallel over the path, θ is the one angle at the entry point, cos θ = −g, and the
+ * isotropic form is multiplied by ψ(θ) (near_light_radiance_distant(q, phase_g), the snippet's
+ * slut_near_light_hg_radiance_distant). Exact as l → ∞. */
+SLUT_FN double slut_hg_nl_distant_psi(double phase_g, double g) {
+    g = slut_clamp(g, -1.0, 1.0);
+    return slut_hg_nl_psi(phase_g, g, 1.0, (1.0 - fabs(g)) * (1.0 + fabs(g)));
 }
 
 #ifndef SLUT_SHADER /* the quadrature: the generator's, the runtime's and the tests' (double only) */

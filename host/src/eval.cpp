@@ -88,8 +88,9 @@ void answer_airlight_phase(const nlohmann::json &q, double phase_g, nlohmann::js
 
 // The anisotropic near light (phase_g ≠ 0) of one channel: exact by quadrature; the table from
 // a loaded anisotropic near-light table (E3_hg or E4_hg) of the same g that covers the query
-// (the light below the plane: 0 when one of that g is loaded). The thin-medium and
-// distant-light forms of near_light queries are isotropic: not given for phase_g ≠ 0.
+// (the light below the plane: 0 when one of that g is loaded); "approx" and "distant", the
+// thin-medium and distant-light closed forms with the phase (nearlight_hg.hpp), as the isotropic
+// query gives its own.
 void answer_near_light_phase(const nlohmann::json &q, double phase_g, nlohmann::json &out, const EvalTables &tables) {
     const NearLightQuery n = eval_near_light_query(q);
     eval_put(out, "exact", near_light_radiance_exact(n, phase_g)); // validates the query
@@ -100,6 +101,8 @@ void answer_near_light_phase(const nlohmann::json &q, double phase_g, nlohmann::
     if (!table) out["table"] = nullptr;
     else if (p.light_below) out["table"] = 0.0;
     else eval_put(out, "table", table->radiance(n));
+    eval_put(out, "approx", near_light_radiance_thin(n, phase_g));
+    eval_put(out, "distant", near_light_radiance_distant(n, phase_g));
 }
 
 // One channel's answer fields (those not in the query), with its note for non-finite values.

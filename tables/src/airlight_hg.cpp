@@ -102,33 +102,16 @@ Rgb AirlightHgTable::radiance_rgb(const AirlightQuery &q, const Rgb &sigma_s_per
 double airlight_hg_radiance_thin(const AirlightQuery &q, double phase_g) {
     check_phase_g(phase_g);
     check_airlight_query(q);
-    if (!(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0)) return 0.0;
-    double sh = 0, ch = 0;
-    slut_hg_half_angles(std::sin(q.gamma_rad), std::cos(q.gamma_rad), &sh, &ch);
-    const double s_over_D = (q.length_m > 1e300) ? HUGE_VAL : q.length_m / q.distance_m;
-    // No extinction: the bracket at optical distance 0, and no e^{−σ_t D}.
-    return airlight_radiance_from_bracket(q, 0.0, slut_hg_airlight_bracket(0.0, sh, ch, s_over_D, phase_g, 1.0));
+    // kernels/slut_airlight_hg.h: the isotropic bracket at σ_t = 0 times the phase's mean over the arc.
+    return slut_hg_airlight_radiance_thin(q.sigma_s_per_m, q.intensity_W_per_sr, q.distance_m, std::sin(q.gamma_rad),
+                                          std::cos(q.gamma_rad), q.length_m, phase_g);
 }
 
 double airlight_hg_radiance_distant(const AirlightQuery &q, double phase_g) {
     check_phase_g(phase_g);
     check_airlight_query(q);
-    if (!(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0)) return 0.0;
-    const double sigma_t = q.sigma_s_per_m + q.sigma_a_per_m;
-    double sh = 0, ch = 0;
-    slut_hg_half_angles(std::sin(q.gamma_rad), std::cos(q.gamma_rad), &sh, &ch);
-    const double one_minus_cos = 2.0 * sh * sh; // 1 − cos γ
-    const double rate = sigma_t * one_minus_cos; // 1/m
-    // ∫_0^s e^{−rate x} dx = −expm1(−rate s)/rate (s for rate s → 0; 1/rate for s = ∞).
-    double path_m;
-    if (q.length_m > 1e300) path_m = rate > 0.0 ? 1.0 / rate : HUGE_VAL;
-    else path_m = rate * q.length_m > 1e-300 ? -std::expm1(-rate * q.length_m) / rate : q.length_m;
-    if (!std::isfinite(path_m)) return HUGE_VAL;
-    const double psi = slut_hg_psi_half(phase_g, sh * sh, ch * ch); // ψ_g at θ = γ
-    const double ln = std::log(q.sigma_s_per_m) + std::log(SLUT_INV_4PI * psi) + std::log(q.intensity_W_per_sr) -
-                      2.0 * std::log(q.distance_m) - sigma_t * q.distance_m + std::log(path_m);
-    const double L = std::exp(ln);
-    return std::isfinite(L) ? L : (ln > 0 ? HUGE_VAL : 0.0);
+    return slut_hg_airlight_radiance_distant(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
+                                             std::sin(q.gamma_rad), std::cos(q.gamma_rad), q.length_m, phase_g);
 }
 
 } // namespace scatterlut

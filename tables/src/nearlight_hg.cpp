@@ -77,9 +77,9 @@ double near_light_radiance_thin(const NearLightQuery &q, double phase_g) {
     const double iso = near_light_radiance_thin(q);
     if (phase_g == 0.0 || !(iso > 0.0) || !std::isfinite(iso)) return iso;
     const slut_nl_params p = geometry(q);
-    // The ĥ⁻²-weighted mean of ψ over the path at σ_t = 0 (lengths in units of l: S/T).
-    const double psi_mean = slut_hg_nl_E(0.0, p.g, p.r, p.S_over_T, phase_g, 1.0);
-    return iso * psi_mean;
+    // The ĥ⁻²-weighted mean of ψ over the path at σ_t = 0: the mean of ψ over the arc of
+    // scattering angles the path sweeps (lengths in units of l: s/l), kernels/slut_nearlight_hg.h.
+    return iso * slut_hg_nl_thin_psi_mean(phase_g, p.g, p.S_over_T);
 }
 
 double near_light_radiance_distant(const NearLightQuery &q, double phase_g) {
@@ -87,9 +87,8 @@ double near_light_radiance_distant(const NearLightQuery &q, double phase_g) {
     const double iso = near_light_radiance_distant(q);
     if (phase_g == 0.0 || !(iso > 0.0) || !std::isfinite(iso)) return iso;
     const slut_nl_params p = geometry(q);
-    // θ at the entry point: cos θ = −ω·ω_l = −g (kernels/slut_nearlight_hg.h at τ = 0).
-    const double sg2 = (1.0 - std::fabs(p.g)) * (1.0 + std::fabs(p.g));
-    return iso * slut_hg_nl_psi(phase_g, p.g, 1.0, sg2);
+    // ψ at the entry point, cos θ = −ω·ω_l = −g (kernels/slut_nearlight_hg.h).
+    return iso * slut_hg_nl_distant_psi(phase_g, p.g);
 }
 
 NearLightHgTable::NearLightHgTable(Table table)

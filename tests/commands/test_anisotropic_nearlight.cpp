@@ -440,6 +440,9 @@ TEST(AnisotropicNearLightEval, TableOfTheSameG) {
             ASSERT_TRUE(out["table"].is_number()) << out.dump();
             EXPECT_EQ(out["table"].get<double>(), table->radiance(q)) << out.dump();
             EXPECT_EQ(out["exact"].get<double>(), scatterlut::near_light_radiance_exact(q, g));
+            // The closed forms with the phase (thin: 0 for a thick table's infinite length).
+            EXPECT_EQ(out["approx"].get<double>(), scatterlut::near_light_radiance_thin(q, g)) << out.dump();
+            EXPECT_EQ(out["distant"].get<double>(), scatterlut::near_light_radiance_distant(q, g)) << out.dump();
             // Another g (the other loaded table's, or none loaded) and the isotropic query: no table.
             for (double other : {g == 0.8 ? -0.5 : 0.8, 0.3, 0.0})
                 EXPECT_TRUE(scatterlut::eval_query(json_of(q, other), tables)["table"].is_null()) << other;

@@ -8,6 +8,8 @@
 //     (scatterlut::AirlightHgTable, tables/src/airlight_hg.cpp) on the same table;
 //   - the snippet's exact radiance (slut_airlight_hg_exact, no table): the double-precision
 //     exact radiance (scatterlut::airlight_radiance_exact with phase_g, anisotropic.hpp);
+//   - the thin-medium and distant-light closed forms with the phase (no table, every g):
+//     scatterlut::airlight_hg_radiance_thin / _distant;
 // both fed the same float-rounded inputs, with the float tolerances of the isotropic snippet's
 // test (tests/shaders/test_shaders.cpp); G~_g also just beyond u_max at the forward peak, where
 // Watson's series alone fails (docs/SHADERS.md). Also: the files share one body and are ASCII,
@@ -83,8 +85,19 @@ const scatterlut::AirlightHgTable &table_for(double g) {
 // One GPU query (airlight_gpu_test::Query, 16 floats). mode 0: Gs_g(u, w); 1: table radiance
 // (sigma_s, sigma_a, I0, D, sin gamma, cos gamma, s); 2: exact radiance (the same inputs, no
 // table); 3: the RGB entry point (sigma_s rgb, sigma_a rgb, I0, D, sin gamma, cos gamma, s,
-// channel returned); 4: radiance from points (viewer, dir, light, s, sigma_s, sigma_a, I0).
-enum Mode { kScaledTail = 0, kRadiance = 1, kExact = 2, kRgb = 3, kPoints = 4 };
+// channel returned); 4: radiance from points (viewer, dir, light, s, sigma_s, sigma_a, I0);
+// 5, 6: the thin-medium and distant-light closed forms with the phase (mode 1's inputs, no table).
+enum Mode { kScaledTail = 0, kRadiance = 1, kExact = 2, kRgb = 3, kPoints = 4, kThin = 5, kDistant = 6 };
+
+// A query of the seven radiance inputs d (sigma_s, sigma_a, I0, D, sin gamma, cos gamma, s) in
+// one of the modes that take them (1, 2, 5, 6), with its optical distance sigma_t D.
+Query inputs_query(Mode mode, const std::array<float, 7> &d) {
+    Query q;
+    q.gpu[0] = mode;
+    std::copy(d.begin(), d.end(), q.gpu.begin() + 1);
+    q.optical_distance = (static_cast<double>(d[0]) + d[1]) * d[3];
+    return q;
+}
 
 // The largest change of the stored ln Gs_g across the cell that holds (u, w), the u and the w
 // step added; 0 outside the table (the asymptotic forms serve there).
@@ -159,6 +172,32 @@ std::vector<Query> make_queries(double g) {
         q.label = "Gs";
         out.push_back(q);
     }
+    // The closed forms with the phase (no table: every g, the peak-only one included) against
+    // airlight_hg_radiance_thin / _distant on the same float inputs: the radiance's random
+    // geometries (gamma -> 0 and -> pi, infinite rays) and the degenerate inputs.
+    // Their own random stream, so that the other queries stay what they were.
+    {
+        std::mt19937_64 closed_rng(7771 + static_cast<uint64_t>(std::lround(100 * (g + 1))));
+        std::vector<std::array<float, 7>> inputs = degenerate_radiance_inputs();
+        for (int i = 0; i < 600; ++i) {
+            Query geometry; // random_geometry's D, sin gamma, cos gamma, s in gpu[4..7]
+            double sigma_t = 0, I0 = 0;
+            random_geometry(closed_rng, &geometry, &sigma_t, &I0);
+            const float sigma_s = static_cast<float>(sigma_t * (0.05 + 0.95 * unit(closed_rng)));
+            inputs.push_back({sigma_s, static_cast<float>(sigma_t - sigma_s), static_cast<float>(I0), geometry.gpu[4],
+                              geometry.gpu[5], geometry.gpu[6], geometry.gpu[7]});
+        }
+        for (const auto &d : inputs)
+            for (Mode mode : {kThin, kDistant}) {
+                Query q = inputs_query(mode, d);
+                const scatterlut::AirlightQuery cq = cpp_query(d.data());
+                q.reference = mode == kThin ? scatterlut::airlight_hg_radiance_thin(cq, g)
+                                            : scatterlut::airlight_hg_radiance_distant(cq, g);
+                if (mode == kThin) q.optical_distance = 0.0; // no e^{-sigma_t D} in the thin form
+                q.label = mode == kThin ? "thin" : "distant";
+                out.push_back(q);
+            }
+    }
     if (peak_only) return out;
 
     // Radiance from the table and exactly, on the same geometries.
@@ -196,12 +235,9 @@ std::vector<Query> make_queries(double g) {
     }
     for (const auto &d : limits)
         for (Mode mode : {kRadiance, kExact}) {
-            Query q;
-            q.gpu[0] = mode;
-            std::copy(d.begin(), d.end(), q.gpu.begin() + 1);
+            Query q = inputs_query(mode, d);
             const scatterlut::AirlightQuery cq = cpp_query(d.data());
             q.reference = mode == kRadiance ? table.radiance(cq) : scatterlut::airlight_radiance_exact(cq, g);
-            q.optical_distance = (static_cast<double>(d[0]) + d[1]) * d[3];
             q.label = mode == kRadiance ? "radiance" : "exact";
             out.push_back(q);
         }
@@ -314,6 +350,12 @@ float test_eval(int i) {
         int c = int(q[b + 12]);
         return c == 0 ? L.x : (c == 1 ? L.y : L.z);
     }
+    if (mode == 5)
+        return slut_airlight_hg_radiance_thin(q[b + 1], q[b + 2], q[b + 3], q[b + 4], q[b + 5], q[b + 6], q[b + 7],
+                                              phase_g);
+    if (mode == 6)
+        return slut_airlight_hg_radiance_distant(q[b + 1], q[b + 2], q[b + 3], q[b + 4], q[b + 5], q[b + 6],
+                                                 q[b + 7], phase_g);
     return slut_airlight_hg_radiance_points(SLUT_TEX_ARG(slut_test_table), t,
                                             SLUT_FLOAT3(q[b + 1], q[b + 2], q[b + 3]),
                                             SLUT_FLOAT3(q[b + 4], q[b + 5], q[b + 6]),
@@ -381,6 +423,11 @@ float4 main(float3 world_pos : TEXCOORD0, float3 eye_pos : TEXCOORD1) : SV_Targe
 // difference of two samples).
 constexpr double kTolGs = 1e-5, kTolRadiance = 1e-5, kTolPerOpticalDistance = 4e-7;
 constexpr double kTexelRounding = 1e-5;
+// The closed forms with the phase (no table: cell_jump 0) take the radiance's tolerance: the
+// distant form's float error is its e^{-sigma_t D} (formed in logarithms: ~ulp(sigma_t D)), the
+// thin form has no exponential (optical_distance 0: 1e-5 alone). Its largest error is the
+// float rounding of phase_g itself near the forward peak, d ln psi/dg = 1/(1 + g) + 2/(1 - g)
+// = 200 at g = 0.99 times |float(0.99) - 0.99| = 9.5e-9: 1.9e-6 (measured 2.05e-6, at gamma = 0).
 
 #if SLUT_HAVE_EGL
 std::vector<float> run_on_gpu(const std::string &source, double g, std::string *error) {
@@ -405,7 +452,7 @@ void expect_agreement(const std::vector<float> &got, double g, const std::string
     ASSERT_EQ(got.size(), qs.size());
     std::vector<double> reference;
     for (const Query &q : qs) reference.push_back(q.reference);
-    for (const std::string label : {"Gs", "radiance", "exact", "rgb", "points"}) {
+    for (const std::string label : {"Gs", "radiance", "exact", "rgb", "points", "thin", "distant"}) {
         std::vector<size_t> indices;
         for (size_t i = 0; i < qs.size(); ++i)
             if (qs[i].label == label) indices.push_back(i);

@@ -2,15 +2,15 @@
 // (scatterlut_nearlight_hg.{glsl,hlsl,essl}, generated at build time from
 // tables/shaders/src/nearlight_hg.slsl on top of nearlight.slsl, with kernels/slut_nearlight_hg.h
 // compiled in float; docs/SHADERS.md "Anisotropic near light") against the C++ runtime
-// (scatterlut::NearLightHgTable: E_g, radiance, radiance_rgb; near_light_radiance_distant with
-// the phase; tables/src/nearlight_hg.cpp) on the same float-rounded tables and inputs, at
+// (scatterlut::NearLightHgTable: E_g, radiance, radiance_rgb; near_light_radiance_distant and
+// _thin with the phase; tables/src/nearlight_hg.cpp) on the same float-rounded tables and inputs, at
 // phase g in {-0.5, 0.3, 0.85}, for a thick table (near_light_E3_hg) and a slab table
 // (near_light_E4_hg) each:
 //   - E_g(T, g, r[, S]) inside the table (points uniform in the warped unit coordinates, r = 0);
 //   - radiance from geometry (the isotropic test's random geometries) wherever the C++ table
 //     covers the query, its RGB entry point (per-channel coefficients, one channel clear now and
-//     then) where it covers every channel, the zero limits, and the distant-light closed form
-//     with the phase (no table);
+//     then) where it covers every channel, the zero limits, and the distant-light and (slab
+//     geometries: a thick medium's is 0) thin-medium closed forms with the phase (no table);
 //   - never NaN or negative.
 // The tables are laid out by the generator's own make_nearlight_table_layout (its default
 // plans, a few nodes per axis) and integrated here on the CPU exactly as kernels/nearlight_Eg.cl
@@ -115,8 +115,8 @@ const GpuTable &table_for(double phase_g, bool slab) {
 // Modes: 0 E_g(T, g, r, S) [2..5]; 1 radiance of the geometry in gpu[2..16]
 // (nearlight_gpu_test::random_geometry); 2, 3, 4 the RGB entry point's channel mode - 2, with
 // channel 0's sigma_s, sigma_a in gpu[2], gpu[3], channel 1's in gpu[1], gpu[17], channel 2's
-// in gpu[18], gpu[19]; 5 the distant-light closed form with the phase.
-enum Mode { kE = 0, kRadiance = 1, kRgb = 2, kDistant = 5 };
+// in gpu[18], gpu[19]; 5 the distant-light closed form with the phase; 6 the thin-medium one.
+enum Mode { kE = 0, kRadiance = 1, kRgb = 2, kDistant = 5, kThin = 6 };
 
 std::vector<Query> make_queries(double phase_g, bool slab) {
     const GpuTable &t = table_for(phase_g, slab);
@@ -161,6 +161,11 @@ std::vector<Query> make_queries(double phase_g, bool slab) {
             distant.reference = scatterlut::near_light_radiance_distant(c, phase_g);
             distant.label = "distant";
             out.push_back(distant);
+            Query thin = q;
+            thin.gpu[0] = kThin;
+            thin.reference = scatterlut::near_light_radiance_thin(c, phase_g);
+            thin.label = "thin";
+            if (thin.reference > 1e-30) out.push_back(thin); // thick: E_thin = 0 exactly
             continue;
         }
         // RGB: channel c's coefficients a factor in [0.5, 2] from the geometry's (T and S scale
@@ -231,6 +236,9 @@ float test_eval(int i) {
     if (mode == 1)
         return slut_near_light_hg_radiance(SLUT_TEX_ARG(slut_test_table), t, q[b + 2], q[b + 3], q[b + 4], n, e, l,
                                            q[b + 14], q[b + 15], fresnel);
+    if (mode == 6)
+        return slut_near_light_hg_radiance_thin(phase_g, q[b + 2], q[b + 3], q[b + 4], n, e, l, q[b + 14], q[b + 15],
+                                                fresnel);
     if (mode == 5)
         return slut_near_light_hg_radiance_distant(phase_g, q[b + 2], q[b + 3], q[b + 4], n, e, l, q[b + 14],
                                                    q[b + 15], fresnel);
@@ -294,6 +302,9 @@ std::string hlsl_pixel_source() {
 // of up to ~T (kTolDivisorPerT per unit of T).
 constexpr double kTolE = 1e-5, kTolPerLnE = 2e-7, kTolRadiance = 1e-5, kTolClosedForm = 1e-5,
                  kTolPerConditioning = 2e-7, kTolDivisorPerT = 1e-6;
+// The thin form with the phase takes the closed forms' tolerance: its factor, the mean of psi
+// over the path's arc (kernels/slut_phase_arc.h in float), adds below 1e-6 (the medians), its
+// maxima are the float geometry's as the distant form's (docs/SHADERS.md).
 
 void expect_agreement(const std::vector<float> &got, double phase_g, bool slab, const std::string &run,
                       ::testing::Test *test) {
@@ -302,7 +313,7 @@ void expect_agreement(const std::vector<float> &got, double phase_g, bool slab, 
     std::vector<double> reference;
     for (const Query &q : qs) reference.push_back(q.reference);
     const char *table = slab ? "E4_hg" : "E3_hg";
-    for (const std::string label : {"E", "radiance", "rgb", "rgb_clear", "distant", "zero"}) {
+    for (const std::string label : {"E", "radiance", "rgb", "rgb_clear", "distant", "thin", "zero"}) {
         std::vector<size_t> idx;
         for (size_t i = 0; i < qs.size(); ++i)
             if (qs[i].label == label) idx.push_back(i);
@@ -313,6 +324,7 @@ void expect_agreement(const std::vector<float> &got, double phase_g, bool slab, 
             const double T = label == "E" ? q.gpu[2] : 0.0;
             const double table_part = kTolE + kTolPerLnE * std::fabs(q.ln_E);
             if (label == "distant") return kTolClosedForm + geometry;
+            if (label == "thin") return kTolClosedForm + geometry;
             if (label == "E") return table_part + kTolDivisorPerT * T;
             // radiance: T = sigma_t l of the geometry, up to the T axis's end
             const double Tmax = table_for(phase_g, slab).rounded.axes[0].map.max;
@@ -374,14 +386,15 @@ TEST(NearLightHgShaderQueries, CoverEveryEntryPoint) {
         for (bool slab : {false, true}) {
             std::map<std::string, int> count;
             for (const Query &q : queries(phase_g, slab)) ++count[q.label];
-            std::printf("g=%g %s: E %d, radiance %d, rgb %d (clear %d), distant %d, zero %d\n", phase_g,
+            std::printf("g=%g %s: E %d, radiance %d, rgb %d (clear %d), distant %d, thin %d, zero %d\n", phase_g,
                         slab ? "E4_hg" : "E3_hg", count["E"], count["radiance"], count["rgb"], count["rgb_clear"],
-                        count["distant"], count["zero"]);
+                        count["distant"], count["thin"], count["zero"]);
             EXPECT_GE(count["E"], 400);
             EXPECT_GE(count["radiance"], 500);
             EXPECT_GE(count["rgb"], 400);
             EXPECT_GE(count["rgb_clear"], 20);
             EXPECT_GE(count["distant"], 500);
+            EXPECT_GE(count["thin"], slab ? 500 : 0); // a thick medium's thin form is 0 (no GPU query)
             EXPECT_EQ(count["zero"], 4);
         }
 }

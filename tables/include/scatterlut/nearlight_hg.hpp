@@ -39,8 +39,10 @@ std::string near_light_hg_file_stem(bool finite_thickness, double phase_g);
 //    isotropic distant-light form (Gath 2008 eq. 5) is multiplied by ψ(θ);
 //  - thin: the attenuation mean of the isotropic thin form E_thin(r, S) (Gath 2008 §4.2, exact
 //    as σ_t s → 0) times the ĥ⁻²-weighted mean of ψ along the path without attenuation
-//    (E_g at σ_t = 0: one quadrature of the phase alone — the HG phase integrated over the
-//    angle the path subtends at the light is an elliptic integral, with no elementary form).
+//    (E_g at σ_t = 0: the plain mean of ψ over the scattering angles the path sweeps,
+//    θ from acos(−ω·ω_l) to θ(s/l) — an incomplete elliptic integral, with no elementary form;
+//    a fixed rule of at most 48 points within 1e-13 of the adaptive quadrature,
+//    slut_hg_nl_thin_psi_mean of kernels/slut_nearlight_hg.h, the GPU snippet's too).
 // W/(m²·sr); 0 for a light below the plane; never NaN or negative. phase_g = 0: the isotropic forms.
 double near_light_radiance_thin(const NearLightQuery &q, double phase_g);
 double near_light_radiance_distant(const NearLightQuery &q, double phase_g);
