@@ -348,7 +348,7 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
         }
         for (int n = 0; n < 16; ++n) {
             double tn = tn_at[n], en = en_at[n], base = base_at[n];
-            for (b = 0; b < blocks; ++b) sum[b] += base * exp(-T * (tn + en * slut_nl_q(tn, rr[b])));
+            for (b = 0; b < blocks; ++b) sum[b] += base * slut_nl_lanes_exp(-T * (tn + en * slut_nl_q(tn, rr[b])));
             ++nodes;
         }
         if (at_node) {
