@@ -143,11 +143,14 @@ TEST(NearLightKernel, MatchesHostSweepAndReferenceAtHardCorners) {
 // r = 0 (the light in the surface plane, its whole path inside): N is the airlight
 // integral with cos γ = −g, per unit σ_s p I0 σ_t: N = σ_t^{-1}·L_air/(σ_s p I0) with
 // D = T/σ_t. Two independent computations (slut_nearlight.h's E·H and the airlight θ-integral) agree.
-// slut_nl_lanes_exp (the sweep's node-loop exp, kernels/slut_nearlight_lanes.h) restates the
-// device's vector exp operation for operation so that the tables keep their values: on the
-// device it must give the builtin exp's double16 result bit for bit, over the whole range the
-// sweep can reach and beyond (overflow, the subnormal results below −708, the zero below
-// −1000, the rint ties of x/ln 2, ±0, ±inf, NaN).
+// slut_nl_lanes_exp (the sweep's node-loop exp, kernels/slut_nearlight_lanes.h) restates
+// PoCL's vector exp (SLEEF's Sleef_exp_u10) operation for operation so that the tables keep
+// their values. On every device it must be an exp: within 2 ulps of libm's over (−700, 700),
+// the cut-offs and special values right. On PoCL (where its constants come from) it must give
+// the builtin exp's double16 result bit for bit, over the whole range the sweep can reach and
+// beyond (overflow, the subnormal results below −708, the zero below −1000, the rint ties of
+// x/ln 2, ±0, ±inf, NaN); another driver's exp may round differently, and the tables then
+// differ from PoCL's by what that rounding makes.
 TEST(NearLightKernel, LaneExpMatchesBuiltin) {
     scatterlut::Device &dev = device();
     const std::string source = "#include \"slut_nearlight_lanes.h\"\n"
@@ -196,21 +199,30 @@ TEST(NearLightKernel, LaneExpMatchesBuiltin) {
     dev.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(x.size() / 16), cl::NullRange);
     dev.queue().enqueueReadBuffer(out_lane, CL_TRUE, 0, x.size() * sizeof(double), lane.data());
     dev.queue().enqueueReadBuffer(out_builtin, CL_TRUE, 0, x.size() * sizeof(double), builtin.data());
+    const bool pocl = dev.info().platform_name.find("Portable Computing Language") != std::string::npos;
     size_t differing = 0, nonzero_finite = 0;
     for (size_t i = 0; i < x.size(); ++i) {
         const bool same = std::memcmp(&lane[i], &builtin[i], sizeof(double)) == 0 ||
                           (std::isnan(lane[i]) && std::isnan(builtin[i]));
-        if (!same && differing++ < 5)
+        if (!same && differing++ < 5 && pocl)
             ADD_FAILURE() << "x = " << x[i] << ": lane exp " << lane[i] << ", builtin " << builtin[i];
         nonzero_finite += std::isfinite(builtin[i]) && builtin[i] != 0.0;
-        // Both are exp: a check that the comparison is not vacuous (1 ulp is Sleef_exp_u10's bound).
+        // An exp on any device: 2 ulps of libm's (Sleef_exp_u10 promises 1 ulp of the true value).
         if (std::isfinite(x[i]) && x[i] > -700.0 && x[i] < 700.0) {
-            ASSERT_LE(std::fabs(builtin[i] - std::exp(x[i])), 4e-16 * std::exp(x[i])) << "x = " << x[i];
+            ASSERT_LE(std::fabs(lane[i] - std::exp(x[i])), 4.5e-16 * std::exp(x[i])) << "x = " << x[i];
+        } else if (std::isnan(x[i])) {
+            ASSERT_TRUE(std::isnan(lane[i]));
+        } else if (x[i] >= 710.0) {
+            ASSERT_EQ(lane[i], HUGE_VAL) << "x = " << x[i];
+        } else if (x[i] <= -1000.0) {
+            ASSERT_EQ(lane[i], 0.0) << "x = " << x[i];
         }
     }
-    EXPECT_EQ(differing, 0u) << "of " << x.size() << " arguments";
-    std::printf("lane exp: %zu arguments (%zu finite non-zero results), %zu differ from the builtin\n", x.size(),
-                nonzero_finite, differing);
+    if (pocl) {
+        EXPECT_EQ(differing, 0u) << "of " << x.size() << " arguments";
+    }
+    std::printf("lane exp: %zu arguments (%zu finite non-zero results), %zu differ from the builtin (%s)\n", x.size(),
+                nonzero_finite, differing, dev.info().platform_name.c_str());
 }
 
 TEST(NearLightIdentity, ZeroRIsTheAirlight) {
