@@ -160,6 +160,17 @@ TEST(NearLightRadiance, FiniteTableRadianceMatchesExact) {
     EXPECT_GT(finite_cases, 0);
 }
 
+// A query with σ_s log-uniform in 0.05–5 /m, σ_a uniform in [0, σ_s) and the given I0 (W/sr);
+// the geometry left to the caller.
+scatterlut::NearLightQuery random_medium_query(std::mt19937_64 &rng, double intensity_W_per_sr) {
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    scatterlut::NearLightQuery q;
+    q.sigma_s_per_m = 0.05 * std::pow(100.0, U(rng));
+    q.sigma_a_per_m = q.sigma_s_per_m * U(rng);
+    q.intensity_W_per_sr = intensity_W_per_sr;
+    return q;
+}
+
 // The batch radiance is the scalar radiance per query (to 1e-12 relative: libmvec's ≤ 4 ulp
 // exp/expm1/log/atan where the scalar path has libm's), for batch sizes around the 4-lane
 // blocks, on the default thick and finite tables (f32: the float copy) and the small f64 ones,
@@ -176,10 +187,7 @@ TEST(NearLightTable, BatchMatchesScalarPerQuery) {
     };
     std::vector<scatterlut::NearLightQuery> queries;
     for (int k = 0; k < 3000; ++k) {
-        scatterlut::NearLightQuery q;
-        q.sigma_s_per_m = 0.05 * std::pow(100.0, U(rng));
-        q.sigma_a_per_m = q.sigma_s_per_m * U(rng);
-        q.intensity_W_per_sr = 10.0;
+        scatterlut::NearLightQuery q = random_medium_query(rng, 10.0);
         hemisphere(q.eye_dir);
         double dir[3];
         hemisphere(dir);
@@ -299,10 +307,7 @@ TEST(NearLightTable, ThickRadianceMatchesTheGeneralLookup) {
     std::uniform_real_distribution<double> U(0.0, 1.0);
     std::vector<scatterlut::NearLightQuery> queries;
     for (int k = 0; k < 4000; ++k) {
-        scatterlut::NearLightQuery q;
-        q.sigma_s_per_m = 0.05 * std::pow(100.0, U(rng));
-        q.sigma_a_per_m = q.sigma_s_per_m * U(rng);
-        q.intensity_W_per_sr = 2.0;
+        scatterlut::NearLightQuery q = random_medium_query(rng, 2.0);
         const double z = (k % 11 == 5) ? 1e-7 : 0.02 + 0.98 * U(rng), phi = 2 * M_PI * U(rng);
         q.eye_dir[0] = std::sqrt(1 - z * z) * std::cos(phi);
         q.eye_dir[1] = std::sqrt(1 - z * z) * std::sin(phi);
