@@ -208,16 +208,53 @@ SLUT_FN double slut_unit_from_warped(const slut_axis *a, double p, double g0, do
     return slut_unit_from_warped_ends(a->warp, p, a->min, a->max, a->scale, g0, g1);
 }
 
+/* The runtime's five one-transcendental warps (LINEAR, LOG, LOG1P, SQRT1P, LOGLIN) in steps
+ * around that transcendental, as lane-generic expressions: written once for a scalar
+ * (slut_unit_from_warped_runtime below), for the runtime's 4-lane vectors of four queries on
+ * one axis (warp a scalar) and of one query's axes (warp a vector of warp ids: the tests
+ * select per lane, GCC's == and ?:; every operand is evaluated). p, x, arg, t, warped of one
+ * type; the axis constants scalars or vectors of it.
+ *   x      = SLUT_WARP_X(warp, p, p_min, scale):  (p − min)/s for LOG1P, p/s for LOGLIN
+ *            (SLUT_WARP_X_TIMES_SCALE: its numerator, for a caller holding 1/s);
+ *   arg    = SLUT_WARP_ARG(warp, p, x):           1 + x for LOG1P, 1 + p for SQRT1P, else p;
+ *   t      = ln arg (LOG, LOGLIN, LOG1P), √max(arg, 0) (SQRT1P), arg (LINEAR): the caller's, so
+ *            that independent ones can share a vector call;
+ *   warped = SLUT_WARPED_GIVEN(warp, p, x, arg, t): g(p) (slut_warp_forward), LOG1P by
+ *            Goldberg's form ln(1 + x)·x/((1 + x) − 1) (slut_log1p_goldberg: within a few ulps
+ *            of libm's log1p; its log1p fallback for 1 + x = ∞ is ln ∞ = ∞ itself);
+ *   unit   = SLUT_UNIT_OF_WARPED(p, warped, p_min, p_max, g0, g1): the ends returned exactly
+ *            (0 for p ≤ min and NaN, 1 for p ≥ max: the end nodes are hit whatever the
+ *            rounding of the warp there); SLUT_UNIT_CLAMPED with the inside given (a caller
+ *            holding 1/(g1 − g0)).
+ * The same operations in the same order as slut_warp_forward's (bit-identical on the axis). */
+#define SLUT_WARP_HAS_RUNTIME_FORM(warp)                                                                      \
+    ((warp) == SLUT_WARP_LINEAR || (warp) == SLUT_WARP_LOG || (warp) == SLUT_WARP_LOG1P ||                   \
+     (warp) == SLUT_WARP_SQRT1P || (warp) == SLUT_WARP_LOGLIN)
+#define SLUT_WARP_X_TIMES_SCALE(warp, p, p_min) (((warp) == SLUT_WARP_LOG1P) ? (p) - (p_min) : (p))
+#define SLUT_WARP_X(warp, p, p_min, scale) (SLUT_WARP_X_TIMES_SCALE(warp, p, p_min) / (scale))
+#define SLUT_WARP_ARG(warp, p, x)                                                                             \
+    (((warp) == SLUT_WARP_LOG1P) ? 1.0 + (x) : ((warp) == SLUT_WARP_SQRT1P) ? 1.0 + (p) : (p))
+#define SLUT_WARPED_GIVEN(warp, p, x, arg, t)                                                                 \
+    (((warp) == SLUT_WARP_LOG) ? (t)                                                                          \
+     : ((warp) == SLUT_WARP_LOGLIN) ? (t) + (x)                                                               \
+     : ((warp) == SLUT_WARP_LOG1P) ? (((arg) == 1.0) ? (x) : ((arg) > 1.7976931348623157e308) ? (t)          \
+                                                                : (t) * ((x) / ((arg) - 1.0)))                \
+     : ((warp) == SLUT_WARP_SQRT1P) ? (t) : (p))
+#define SLUT_UNIT_CLAMPED(p, p_min, p_max, inside) ((!((p) > (p_min))) ? 0.0 : ((p) >= (p_max)) ? 1.0 : (inside))
+#define SLUT_UNIT_OF_WARPED(p, warped, p_min, p_max, g0, g1)                                                  \
+    SLUT_UNIT_CLAMPED(p, p_min, p_max, ((warped) - (g0)) / ((g1) - (g0)))
+
 /* The runtime samplers' parameter → unit coordinate: slut_unit_from_warped with the ends
-   returned exactly (0 for p ≤ min and NaN, 1 for p ≥ max: the end nodes are hit whatever
-   the rounding of the warp there) and LOG1P by Goldberg's form (slut_log1p_goldberg: a log
-   and a divide instead of libm's log1p, within a few ulps of it; tests/kernels/test_fastmath). */
+   returned exactly and LOG1P by Goldberg's form (a log and a divide instead of libm's log1p;
+   tests/kernels/test_fastmath): the steps above, the other warps by slut_warp_forward. */
 SLUT_FN double slut_unit_from_warped_runtime(const slut_axis *a, double p, double g0, double g1) {
     if (!(p > a->min)) return 0.0;
     if (p >= a->max) return 1.0;
-    double gp = (a->warp == SLUT_WARP_LOG1P) ? slut_log1p_goldberg((p - a->min) / a->scale)
-                                             : slut_warp_forward(a->warp, p, a->min, a->scale);
-    return (gp - g0) / (g1 - g0);
+    int warp = a->warp;
+    if (!SLUT_WARP_HAS_RUNTIME_FORM(warp)) return (slut_warp_forward(warp, p, a->min, a->scale) - g0) / (g1 - g0);
+    double x = SLUT_WARP_X(warp, p, a->min, a->scale), arg = SLUT_WARP_ARG(warp, p, x);
+    double t = (warp == SLUT_WARP_SQRT1P) ? sqrt(fmax(arg, 0.0)) : (warp == SLUT_WARP_LINEAR) ? arg : log(arg);
+    return SLUT_UNIT_OF_WARPED(p, SLUT_WARPED_GIVEN(warp, p, x, arg, t), a->min, a->max, g0, g1);
 }
 
 /* The ASINH_COT warp from cot p instead of p: g = −asinh(cot p) = −ln(cot p + √(1 + cot² p)),

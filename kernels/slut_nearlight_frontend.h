@@ -74,14 +74,20 @@ SLUT_FN slut_nl_params slut_nl_params_from_dots(double l, double mu_e, double n_
  * the form finite as σ_t → 0 (T·H depends on g and s/l only); transmittance is the exit's
  * Fresnel factor (1 without one). 0 without light (kind ≠ SLUT_NL_OK, σ_s = 0, I0 = 0,
  * s = 0); +∞ where H diverges (the ray runs through the light) or the light sits at O. */
-SLUT_FN double slut_nl_assemble(slut_nl_params p, double sigma_s_per_m, double intensity_w_sr, double length_m,
-                                double transmittance, double E) {
+/* The same with T·H given (H_scaled = slut_nl_H_scaled(p.g, p.S_over_T)): for a caller that
+ * computes it while the table's cell is fetched (the runtime's thick radiance). */
+SLUT_FN double slut_nl_assemble_given_H(slut_nl_params p, double sigma_s_per_m, double intensity_w_sr,
+                                        double length_m, double transmittance, double E, double H_scaled) {
     if (p.kind != SLUT_NL_OK || !(sigma_s_per_m > 0.0) || !(intensity_w_sr > 0.0) || !(length_m > 0.0))
         return 0.0;
     if (!(p.distance_m > 0.0)) return SLUT_HUGE_VAL;
-    double H_scaled = slut_nl_H_scaled(p.g, p.S_over_T);
     if (!SLUT_ISFINITE(H_scaled)) return SLUT_HUGE_VAL;
     return transmittance * sigma_s_per_m * SLUT_INV_4PI * intensity_w_sr * E * H_scaled / p.distance_m;
+}
+SLUT_FN double slut_nl_assemble(slut_nl_params p, double sigma_s_per_m, double intensity_w_sr, double length_m,
+                                double transmittance, double E) {
+    return slut_nl_assemble_given_H(p, sigma_s_per_m, intensity_w_sr, length_m, transmittance, E,
+                                    slut_nl_H_scaled(p.g, p.S_over_T));
 }
 
 /* (T, g, r, S) of a geometry seen through the surface: the eye ray refracted into the medium

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "scatterlut/io.hpp"
+#include "sampler_cell.hpp"
 #include "scatterlut/sampler.hpp"
 #include "simd4.hpp"
 
@@ -122,12 +123,23 @@ NearLightTable::NearLightTable(Table table) : table_(std::move(table)) {
     for (size_t i = 0; i < table_.values.size(); i += stride) {
         const double T = slut_axis_node(&table_.axes[0].map, static_cast<int>((i / stride) % n_T));
         const double hi = (e3 ? 0.0 : T) + kLnRoundingSlack;
-        require(table_.values[i] >= kMinStoredLn && table_.values[i] <= hi,
-                std::string("near-light table: ") + channel + " = " + std::to_string(table_.values[i]) + " at " +
-                    detail::describe_value(table_, i) + " is outside the quantity's range (E in (0, 1]: " +
-                    (e3 ? "ln E <= 0" : "ln(E/B) <= T") + "): the file is corrupt");
+        if (!(table_.values[i] >= kMinStoredLn && table_.values[i] <= hi)) // the message only when it fails
+            throw std::invalid_argument(std::string("near-light table: ") + channel + " = " +
+                                        std::to_string(table_.values[i]) + " at " + detail::describe_value(table_, i) +
+                                        " is outside the quantity's range (E in (0, 1]: " +
+                                        (e3 ? "ln E <= 0" : "ln(E/B) <= T") + "): the file is corrupt");
     }
     cache_ = make_sampler_cache(table_);
+    for (size_t a = 0; a < 3; ++a) {
+        const slut_axis &axis = table_.axes[a].map;
+        axis_lanes_.min[a] = axis.min;
+        axis_lanes_.max[a] = axis.max;
+        axis_lanes_.g0[a] = cache_.g0[a];
+        axis_lanes_.inv_scale[a] = 1.0 / axis.scale;
+        axis_lanes_.inv_span[a] = 1.0 / (cache_.g1[a] - cache_.g0[a]);
+        axis_lanes_.warp[a] = axis.warp;
+        axis_lanes_.runtime_forms = axis_lanes_.runtime_forms && SLUT_WARP_HAS_RUNTIME_FORM(axis.warp);
+    }
     values32_ = float_values_if_exact(table_);
 }
 
@@ -160,10 +172,11 @@ double NearLightTable::node_E(const size_t *node) const {
     return thick_only() ? stored : stored * slut_nl_E_base(p[0], p[2], p[3]);
 }
 
+
 #if SLUT_HAVE_SIMD4
 namespace {
-bool radiance_e4_simd(const NearLightTable &table, const NearLightQuery &q, const slut_nl_params &p, double *L);
-}
+bool radiance_simd(const NearLightTable &table, const NearLightQuery &q, const slut_nl_params &p, double *L);
+} // namespace
 #endif
 
 double NearLightTable::radiance(const NearLightQuery &q) const {
@@ -171,7 +184,7 @@ double NearLightTable::radiance(const NearLightQuery &q) const {
     if (p.kind != SLUT_NL_OK) return 0.0;
 #if SLUT_HAVE_SIMD4
     double L;
-    if (!thick_only() && simd4::available() && radiance_e4_simd(*this, q, p, &L)) return L;
+    if (simd4::available() && radiance_simd(*this, q, p, &L)) return L;
 #endif
     return assemble(q, p, p.T > 0.0 ? E(p.T, p.g, p.r, p.S) : 1.0);
 }
@@ -185,9 +198,10 @@ double NearLightTable::radiance(const NearLightQuery &q) const {
 // coordinate (slut_nl_unit_from_S: six vector atans and two vector logs) and the value base
 // (slut_nl_E_base: a vector exp and two vector expm1), the decoding exp; the cells of the four
 // queries are gathered together. The value base takes the kernel's lane-generic expressions
-// (SLUT_NL_THIN_*, SLUT_NL_BASE_OF_THIN); slut_nl_inv_square_integral (why: at
-// inv_square_integral4) and the warps of slut_unit_from_warped_runtime (its scalar form takes
-// its log inside) are restated lane-wise; the tests compare every query with the scalar call. Queries the vectors do not serve (zero
+// (SLUT_NL_THIN_*, SLUT_NL_BASE_OF_THIN) and the axis warps slut_axes.h's (SLUT_WARP_X,
+// SLUT_WARP_ARG, SLUT_WARPED_GIVEN, SLUT_UNIT_OF_WARPED: slut_unit_from_warped_runtime's
+// steps); slut_nl_inv_square_integral is restated lane-wise (why: at inv_square_integral4);
+// the tests compare every query with the scalar call. Queries the vectors do not serve (zero
 // radiance, the light at the entry point, T = 0, outside the table, an axis warp without a
 // vector form) take the scalar radiance(q).
 struct NearLightBatch {
@@ -225,23 +239,41 @@ struct NearLightBatch {
         return simd4::select(len > zero, simd4::select(ahead, forward, backward), zero);
     }
 
-    // slut_unit_from_warped_runtime lane-wise for the warps with a vector form; false for the others.
+    // slut_unit_from_warped_runtime for four queries on one axis (slut_axes.h's lane-generic
+    // steps, the warp a scalar); false for the warps without those steps.
     SLUT_SIMD4_TARGET static bool unit4(const slut_axis &a, double g0, double g1, v4d p, v4d *unit) {
-        v4d warped;
-        switch (a.warp) {
-        case SLUT_WARP_LINEAR: warped = p; break;
-        case SLUT_WARP_LOG: warped = simd4::log4(p); break;
-        case SLUT_WARP_LOG1P: { // Goldberg's form (slut_log1p_goldberg): x > −1 on the axis
-            const v4d x = (p - a.min) / a.scale, u = 1.0 + x;
-            warped = simd4::select(u == 1.0, x, simd4::log4(u) * (x / (u - 1.0)));
-            break;
-        }
-        case SLUT_WARP_SQRT1P: warped = simd4::sqrt4(simd4::max4(1.0 + p, simd4::splat(0.0))); break;
-        case SLUT_WARP_LOGLIN: warped = simd4::log4(p) + p / a.scale; break;
-        default: return false;
-        }
-        const v4d x = (warped - g0) / (g1 - g0);
-        *unit = simd4::select(p <= a.min, simd4::splat(0.0), simd4::select(p >= a.max, simd4::splat(1.0), x));
+        const int warp = a.warp;
+        if (!SLUT_WARP_HAS_RUNTIME_FORM(warp)) return false;
+        const v4d x = SLUT_WARP_X(warp, p, a.min, a.scale), arg = SLUT_WARP_ARG(warp, p, x);
+        const v4d t = warp == SLUT_WARP_SQRT1P ? simd4::sqrt4(simd4::max4(arg, simd4::splat(0.0)))
+                      : warp == SLUT_WARP_LINEAR ? arg
+                                                 : simd4::log4(arg);
+        *unit = SLUT_UNIT_OF_WARPED(p, SLUT_WARPED_GIVEN(warp, p, x, arg, t), a.min, a.max, g0, g1);
+        return true;
+    }
+
+    // The unit coordinates of one query's (T, g, r) on the table's first three axes, the axes
+    // as lanes (slut_axes.h's lane-generic steps, the warps a lane vector): one vector log and
+    // one vector sqrt for the three. The two divides by axis constants (x = num/s and the
+    // span g1 − g0) as products with reciprocals computed once per table: an ulp or two from
+    // the scalar form, two divides fewer on the path to the cell (BM_NearLightRadiance/3
+    // 75 → 72 ns in a throw-away driver over the bench's geometries, thread CPU time, minimum
+    // of 1000 rounds, three interleaved runs). False where an axis has a warp without those steps.
+    SLUT_SIMD4_TARGET static bool units3(const NearLightTable &t, double T, double g, double r, double *unit) {
+        const NearLightTable::AxisLanes &lanes = t.axis_lanes_;
+        if (!lanes.runtime_forms) return false;
+        const v4d p = {T, g, r, 1.0}, p_min = simd4::load4(lanes.min), p_max = simd4::load4(lanes.max);
+        const v4l warp = {lanes.warp[0], lanes.warp[1], lanes.warp[2], lanes.warp[3]};
+        const v4d x = SLUT_WARP_X_TIMES_SCALE(warp, p, p_min) * simd4::load4(lanes.inv_scale);
+        const v4d arg = SLUT_WARP_ARG(warp, p, x);
+        const v4l takes_sqrt = warp == SLUT_WARP_SQRT1P, takes_log = !takes_sqrt && warp != SLUT_WARP_LINEAR;
+        const v4d ln = simd4::log4(takes_log ? arg : 1.0), root = simd4::sqrt4(simd4::max4(arg, simd4::splat(0.0)));
+        const v4d t_arg = takes_log ? ln : takes_sqrt ? root : arg;
+        const v4d warped = SLUT_WARPED_GIVEN(warp, p, x, arg, t_arg);
+        const v4d u = SLUT_UNIT_CLAMPED(p, p_min, p_max, (warped - simd4::load4(lanes.g0)) * simd4::load4(lanes.inv_span));
+        unit[0] = u[0];
+        unit[1] = u[1];
+        unit[2] = u[2];
         return true;
     }
 
@@ -336,11 +368,34 @@ struct NearLightBatch {
         }
     }
 
+    // One 3-D query (the scalar radiance): the general path's arithmetic (E's unit coordinates
+    // and cell, H, slut_nl_assemble) with the three axis warps as one vector call
+    // (units3) and in an order that lets the CPU overlap the cell's memory latency with H (the
+    // corners gathered, then H's atan, then the lerps): the same values as assemble(q, p,
+    // E(...)) to libmvec's log against libm's. False (nothing computed) where that path must
+    // answer: outside the table, T = 0, zero radiance, the light at the entry point, f64 values.
+    SLUT_SIMD4_TARGET static bool e3_radiance(const NearLightTable &t, const NearLightQuery &q, const slut_nl_params &p,
+                                              double *L) {
+        if (t.values32_.empty() || !(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0) ||
+            !(p.distance_m > 0.0) || !(p.T > 0.0) || !t.covers(p.T, p.g, p.r, p.S))
+            return false;
+        double unit[3];
+        if (!units3(t, p.T, p.g, p.r, unit)) return false;
+        double corner[8], frac[3];
+        detail::gather_cell<3>(t.table_, t.values32_.data(), unit, 0, corner, frac);
+        const double H_scaled = slut_nl_H_scaled(p.g, p.S_over_T);
+        const double E = std::exp(detail::lerp_cell<3>(corner, frac));
+        *L = slut_nl_assemble_given_H(p, q.sigma_s_per_m, q.intensity_W_per_sr, q.length_m, exit_transmittance(q), E,
+                                      H_scaled);
+        return true;
+    }
+
     // One 4-D query (the scalar radiance): its independent transcendentals packed into lanes
     // of the same vector calls. The slab coordinate's seven inverse-square integrals (inside
     // and outside at S, S_min and S_max, and H at s/l) as two vector atans, the three axis
-    // warps' logs and the coordinate's two as two vector logs, the decoding exp with e^{−T},
-    // and the value base's two expm1: 6 vector calls for 7 atan, 5 log, 2 exp and 2 expm1. The
+    // warps (units3: their logs and sqrt as one vector log and one vector sqrt) and the
+    // coordinate's two logs as one more, the decoding exp with e^{−T}, and the value base's two
+    // expm1: 6 vector calls (and a vector sqrt) for 7 atan, 5 log, 2 exp and 2 expm1. The
     // same arithmetic as NearLightTable::E and assemble otherwise. False (nothing computed)
     // where the scalar path must answer: outside the table, zero radiance, H infinite.
     SLUT_SIMD4_TARGET static bool e4_radiance(const NearLightTable &t, const NearLightQuery &q, const slut_nl_params &p,
@@ -348,16 +403,9 @@ struct NearLightBatch {
         if (!(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0) || !(p.distance_m > 0.0) ||
             !(p.T > 0.0) || !t.covers(p.T, p.g, p.r, p.S))
             return false;
-        const slut_axis *axis[3] = {&t.table_.axes[0].map, &t.table_.axes[1].map, &t.table_.axes[2].map};
+        double unit[4];
+        if (!units3(t, p.T, p.g, p.r, unit)) return false;
         const slut_axis &axis_q = t.table_.axes[3].map;
-        const double param[3] = {p.T, p.g, p.r};
-        v4d log_arg = simd4::splat(1.0);
-        for (int a = 0; a < 3; ++a) {
-            const int warp = axis[a]->warp;
-            if (warp == SLUT_WARP_LOG || warp == SLUT_WARP_LOGLIN) log_arg[a] = param[a];
-            else if (warp == SLUT_WARP_LOG1P) log_arg[a] = 1.0 + (param[a] - axis[a]->min) / axis[a]->scale;
-            else if (warp != SLUT_WARP_LINEAR && warp != SLUT_WARP_SQRT1P) return false;
-        }
         const double T = p.T, g = p.g, sg = slut_nl_sin_from_cos(g);
         const v4d lengths = {p.S / T, axis_q.min / T, axis_q.max / T, p.S_over_T};
         const v4d inside = inv_square_integral4(lengths, simd4::splat(1.0), simd4::splat(g), simd4::splat(sg));
@@ -366,26 +414,7 @@ struct NearLightBatch {
         const double H_scaled = inside[3];
         if (!std::isfinite(H_scaled)) return false;
         const v4d odds = inside / outside; // lanes 0–2: S, S_min, S_max
-        const v4d logs = simd4::log4(log_arg);
         const v4d ratio_logs = simd4::log4(v4d{odds[0] / odds[1], odds[2] / odds[1], 1.0, 1.0});
-        double unit[4];
-        for (int a = 0; a < 3; ++a) { // slut_unit_from_warped_runtime with the log given
-            const slut_axis &ax = *axis[a];
-            const double x = param[a];
-            double warped;
-            switch (ax.warp) {
-            case SLUT_WARP_LOG: warped = logs[a]; break;
-            case SLUT_WARP_LOGLIN: warped = logs[a] + x / ax.scale; break;
-            case SLUT_WARP_LOG1P: {
-                const double y = (x - ax.min) / ax.scale, u = 1.0 + y;
-                warped = (u == 1.0) ? y : logs[a] * (y / (u - 1.0));
-                break;
-            }
-            case SLUT_WARP_SQRT1P: warped = std::sqrt(std::fmax(1.0 + x, 0.0)); break;
-            default: warped = x;
-            }
-            unit[a] = !(x > ax.min) ? 0.0 : x >= ax.max ? 1.0 : (warped - t.cache_.g0[a]) / (t.cache_.g1[a] - t.cache_.g0[a]);
-        }
         unit[3] = ratio_logs[0] / ratio_logs[1];
         const double stored = sample_encoded_at_unit(t.table_, t.values32_, unit, 0);
         // slut_nl_E_base(T, r, S): floor e^{−T}, rise −expm1(−T), E_thin(r, S_eff)
@@ -404,8 +433,8 @@ struct NearLightBatch {
 };
 
 namespace {
-bool radiance_e4_simd(const NearLightTable &table, const NearLightQuery &q, const slut_nl_params &p, double *L) {
-    return NearLightBatch::e4_radiance(table, q, p, L);
+bool radiance_simd(const NearLightTable &table, const NearLightQuery &q, const slut_nl_params &p, double *L) {
+    return table.thick_only() ? NearLightBatch::e3_radiance(table, q, p, L) : NearLightBatch::e4_radiance(table, q, p, L);
 }
 } // namespace
 #endif

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "sampler_cell.hpp"
+
 namespace scatterlut {
 
 double decode(Encoding encoding, double stored) {
@@ -26,43 +28,14 @@ double sample_encoded(const Table &table, const SamplerCache &cache, const doubl
     return sample_encoded_at_unit(table, unit, channel);
 }
 
-// Multilinear interpolation as successive linear ones: gather the 2^n corner values of the
-// cell (corner bit a set = upper node on axis a), then halve the set once per axis, highest
-// axis first: 2^n − 1 lerps instead of 2^n products of n weights. A lerp with fraction 0
-// (1) returns its lower (upper) value exactly, so a zero-weight corner never enters the
-// sum (as a product of weights would guarantee). N is the number of axes: fixed at compile
-// time for the tables the library knows (2-D airlight, 3-D and 4-D near light), so that
-// the corner loops unroll and the cell's offsets stay in registers.
+// Multilinear interpolation: sampler_cell.hpp.
 namespace {
-
-double lerp_exact_ends(double lower, double upper, double f) {
-    return f == 0.0 ? lower : f == 1.0 ? upper : lower + f * (upper - lower);
-}
 
 template <size_t N, typename Value>
 double interpolate_cell(const Table &table, const Value *all_values, const double *unit, size_t channel) {
-    constexpr size_t corners = size_t{1} << N;
-    double frac[N];
-    size_t offset[corners];
-    size_t base = channel, stride = table.channels.size();
-    offset[0] = 0;
-    for (size_t a = 0; a < N; ++a) {
-        const int count = table.axes[a].map.count;
-        int lower;
-        slut_cell_from_unit(unit[a], count, &lower, &frac[a]);
-        base += static_cast<size_t>(lower) * stride;
-        const size_t half = size_t{1} << a;
-        for (size_t c = 0; c < half; ++c) offset[half + c] = offset[c] + stride;
-        stride *= static_cast<size_t>(count);
-    }
-    const Value *values = all_values + base;
-    double v[corners];
-    for (size_t c = 0; c < corners; ++c) v[c] = values[offset[c]];
-    for (size_t a = N; a-- > 0;) {
-        const size_t half = size_t{1} << a;
-        for (size_t c = 0; c < half; ++c) v[c] = lerp_exact_ends(v[c], v[c + half], frac[a]);
-    }
-    return v[0];
+    double v[size_t{1} << N], frac[N];
+    detail::gather_cell<N>(table, all_values, unit, channel, v, frac);
+    return detail::lerp_cell<N>(v, frac);
 }
 
 template <typename Value>

@@ -160,6 +160,17 @@ TEST(NearLightRadiance, FiniteTableRadianceMatchesExact) {
     EXPECT_GT(finite_cases, 0);
 }
 
+// A query with σ_s log-uniform in 0.05–5 /m, σ_a uniform in [0, σ_s) and the given I0 (W/sr);
+// the geometry left to the caller.
+scatterlut::NearLightQuery random_medium_query(std::mt19937_64 &rng, double intensity_W_per_sr) {
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    scatterlut::NearLightQuery q;
+    q.sigma_s_per_m = 0.05 * std::pow(100.0, U(rng));
+    q.sigma_a_per_m = q.sigma_s_per_m * U(rng);
+    q.intensity_W_per_sr = intensity_W_per_sr;
+    return q;
+}
+
 // The batch radiance is the scalar radiance per query (to 1e-12 relative: libmvec's ≤ 4 ulp
 // exp/expm1/log/atan where the scalar path has libm's), for batch sizes around the 4-lane
 // blocks, on the default thick and finite tables (f32: the float copy) and the small f64 ones,
@@ -176,10 +187,7 @@ TEST(NearLightTable, BatchMatchesScalarPerQuery) {
     };
     std::vector<scatterlut::NearLightQuery> queries;
     for (int k = 0; k < 3000; ++k) {
-        scatterlut::NearLightQuery q;
-        q.sigma_s_per_m = 0.05 * std::pow(100.0, U(rng));
-        q.sigma_a_per_m = q.sigma_s_per_m * U(rng);
-        q.intensity_W_per_sr = 10.0;
+        scatterlut::NearLightQuery q = random_medium_query(rng, 10.0);
         hemisphere(q.eye_dir);
         double dir[3];
         hemisphere(dir);
@@ -275,4 +283,84 @@ TEST(NearLightTable, FiniteRadianceMatchesTheGeneralLookup) {
         covered += table.covers(p.T, p.g, p.r, p.S);
     }
     EXPECT_GT(covered, 1000);
+}
+
+// The 3-D table's scalar radiance takes a vector fast path where the CPU allows (nearlight.cpp:
+// the axis warps as one vector call, the cell gathered before H); it must equal the general
+// assembly transmittance·σ_s/(4π)·I0·E·(T·H)/l from the public lookup NearLightTable::E,
+// slut_nl_H_scaled and slut_exit_transmittance to 1e-12 relative (libmvec's log against libm's),
+// and give exactly 0 or +inf where that does: on the default table (f32, warps loglin, sqrt1p,
+// log1p) and a small f32 one whose g axis is log1p, over random geometries and hostile ones:
+// the light below the plane, in the plane (r = 0), at the entry point, on the view ray (g = ±1),
+// a grazing eye, T → 0, outside the table, refraction with and without Fresnel, zero scattering.
+TEST(NearLightTable, ThickRadianceMatchesTheGeneralLookup) {
+    scatterlut::NearLightPlan log1p_g;
+    log1p_g.n_T = 12;
+    log1p_g.n_g = 14;
+    log1p_g.n_r = 10;
+    log1p_g.g_warp = SLUT_WARP_LOG1P;
+    log1p_g.g_scale = 0.02;
+    const scatterlut::NearLightTable tables[] = {
+        scatterlut::NearLightTable(scatterlut::generate_nearlight_table(device(), scatterlut::NearLightPlan{}, {})),
+        scatterlut::NearLightTable(scatterlut::generate_nearlight_table(device(), log1p_g, {}))};
+    std::mt19937_64 rng(41);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    std::vector<scatterlut::NearLightQuery> queries;
+    for (int k = 0; k < 4000; ++k) {
+        scatterlut::NearLightQuery q = random_medium_query(rng, 2.0);
+        const double z = (k % 11 == 5) ? 1e-7 : 0.02 + 0.98 * U(rng), phi = 2 * M_PI * U(rng);
+        q.eye_dir[0] = std::sqrt(1 - z * z) * std::cos(phi);
+        q.eye_dir[1] = std::sqrt(1 - z * z) * std::sin(phi);
+        q.eye_dir[2] = z;
+        double zl = U(rng);
+        if (k % 13 == 1) zl = -zl;  // below the plane: 0
+        if (k % 13 == 2) zl = 0.0;  // in the plane: r = 0
+        const double phil = 2 * M_PI * U(rng), l = 0.05 * std::pow(400.0, U(rng));
+        q.light_rel_m[0] = l * std::sqrt(1 - zl * zl) * std::cos(phil);
+        q.light_rel_m[1] = l * std::sqrt(1 - zl * zl) * std::sin(phil);
+        q.light_rel_m[2] = l * zl;
+        if (k % 13 == 3)
+            for (int c = 0; c < 3; ++c) q.light_rel_m[c] = l * q.eye_dir[c]; // g = 1
+        if (k % 13 == 4) q.light_rel_m[0] = q.light_rel_m[1] = q.light_rel_m[2] = 0.0; // at O: +inf
+        if (k % 13 == 6) q.sigma_s_per_m = q.sigma_a_per_m = 1e-12;                  // T → 0
+        if (k % 13 == 7) q.sigma_a_per_m = 1e3;                                       // T beyond the table
+        if (k % 13 == 8) q.sigma_s_per_m = 0.0;
+        if (k % 7 == 2) {
+            q.eta = (k % 14 == 2) ? 1.5 : 0.75;
+            q.fresnel = (k % 21 == 2) || (k % 21 == 9);
+        }
+        q.length_m = std::numeric_limits<double>::infinity();
+        queries.push_back(q);
+    }
+    for (const auto &table : tables) {
+        int covered = 0, zero = 0, infinite = 0;
+        for (const auto &q : queries) {
+            const scatterlut::NearLightParams p = scatterlut::near_light_params(q);
+            const double got = table.radiance(q);
+            if (p.light_below || q.sigma_s_per_m == 0.0) {
+                EXPECT_EQ(got, 0.0);
+                ++zero;
+                continue;
+            }
+            const double distance = std::sqrt(q.light_rel_m[0] * q.light_rel_m[0] + q.light_rel_m[1] * q.light_rel_m[1] +
+                                              q.light_rel_m[2] * q.light_rel_m[2]);
+            const double H_scaled = slut_nl_H_scaled(p.g, HUGE_VAL);
+            if (!(distance > 0.0) || !std::isfinite(H_scaled)) {
+                EXPECT_EQ(got, HUGE_VAL);
+                ++infinite;
+                continue;
+            }
+            const double transmittance = slut_exit_transmittance(
+                slut_vec3_make(q.normal[0], q.normal[1], q.normal[2]),
+                slut_vec3_make(q.eye_dir[0], q.eye_dir[1], q.eye_dir[2]), q.eta, q.fresnel ? 1 : 0);
+            const double E = p.T > 0.0 ? table.E(p.T, p.g, p.r, p.S) : 1.0;
+            const double want = transmittance * q.sigma_s_per_m / (4 * M_PI) * q.intensity_W_per_sr * E * H_scaled / distance;
+            EXPECT_LE(slut_test::rel_err(got, want), 1e-12)
+                << table.table().kind << " T=" << p.T << " g=" << p.g << " r=" << p.r << " eta=" << q.eta;
+            covered += table.covers(p.T, p.g, p.r, p.S);
+        }
+        EXPECT_GT(covered, 1000);
+        EXPECT_GT(zero, 300);
+        EXPECT_GT(infinite, 100);
+    }
 }

@@ -81,6 +81,14 @@ private:
     Table table_;
     SamplerCache cache_; // of table_
     std::vector<float> values32_; // table_.values as floats when exact (sample_encoded_at_unit)
+    // The first three axes' constants as 4-lane arrays (lane 3: a linear axis [0, 2] whose
+    // parameter is 1), for their unit coordinates as one vector (nearlight.cpp).
+    struct AxisLanes {
+        alignas(32) double min[4] = {0, 0, 0, 0}, max[4] = {0, 0, 0, 2}, inv_scale[4] = {1, 1, 1, 1};
+        alignas(32) double g0[4] = {0, 0, 0, 0}, inv_span[4] = {1, 1, 1, 0.5}; // 1/(g1 − g0)
+        long long warp[4] = {0, 0, 0, 0}; // SLUT_WARP_*
+        bool runtime_forms = true;        // every axis has slut_axes.h's lane-generic steps
+    } axis_lanes_;
 };
 
 } // namespace scatterlut
