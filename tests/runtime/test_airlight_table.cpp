@@ -434,6 +434,8 @@ TEST(AirlightTable, ScalarRadianceMatchesThePortablePath) {
                                                  << " s=" << q.length_m
                                                  << " sigma_t=" << q.sigma_s_per_m + q.sigma_a_per_m;
         }
-        RecordProperty(table == &host_table() ? "worst_rel_f64" : "worst_rel_f32", std::to_string(worst));
+        char worst_text[32];
+        std::snprintf(worst_text, sizeof worst_text, "%.3g", worst);
+        RecordProperty(table == &host_table() ? "worst_rel_f64" : "worst_rel_f32", worst_text);
     }
 }
