@@ -434,7 +434,8 @@ one_panel_radiance8(const slut_airlight_geometry &g) {
 // without branches on the geometry (blends; |x| + d in place of the two signs' d ± x) and
 // its independent divides, square roots and transcendentals as 4-lane vector operations:
 // one divide for tan w1, cot w1's factor and tan dv (and their reciprocals), one atan for
-// w1 and dv, one log for the three warps, one exp for the two decodes and e^{−σ_t D}. The
+// w1 and dv, one log for the three warps, one exp for the two decodes and e^{−σ_t D} (and the
+// one-panel rule's six exps as one 8-lane exp where the CPU has AVX-512). The
 // same formulas (FMA contraction aside: 1e-12 against the portable path, test
 // ScalarRadianceMatchesThePortablePath). Queries outside its plain range take the portable path.
 struct AirlightScalar4 {
