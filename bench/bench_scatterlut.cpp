@@ -579,6 +579,47 @@ void BM_RadianceBatch(benchmark::State &state) {
 }
 BENCHMARK(BM_RadianceBatch)->Arg(0)->Arg(3)->Arg(4)->Iterations(200)->Unit(benchmark::kMillisecond);
 
+// The scalar airlight radiance against the portable path it takes on CPUs without AVX2 + FMA
+// (scatterlut::detail::airlight_radiance_portable: the scalar call before its vector path), in
+// one process, on the geometries of BM_AirlightRadiance/N (arg N). One iteration is one round:
+// the 4096 queries through each, back to back in alternating order, thread CPU time. Counters:
+// ns per query of each (medians over the rounds) and portable_over_scalar, the median [min,
+// max] of the per-round ratios (> 1: the scalar call's vector path is faster).
+void BM_AirlightScalarPaths(benchmark::State &state) {
+    const scatterlut::AirlightTable table(default_airlight_table());
+    const std::vector<scatterlut::AirlightQuery> qs = airlight_bench_queries(static_cast<int>(state.range(0)));
+    const std::function<double()> methods[2] = {
+        [&] {
+            double sum = 0;
+            for (const auto &q : qs) sum += table.radiance(q);
+            return sum;
+        },
+        [&] {
+            double sum = 0;
+            for (const auto &q : qs) sum += scatterlut::detail::airlight_radiance_portable(table, q);
+            return sum;
+        }};
+    std::vector<double> seconds[2];
+    size_t round = 0;
+    for (auto _ : state) {
+        for (size_t m = 0; m < 2; ++m) {
+            const size_t k = (m + round) % 2;
+            const double t0 = thread_cpu_seconds();
+            benchmark::DoNotOptimize(methods[k]());
+            seconds[k].push_back(thread_cpu_seconds() - t0);
+        }
+        ++round;
+    }
+    state.counters["scalar_ns"] = 1e9 * median(seconds[0]) / static_cast<double>(kPoints);
+    state.counters["portable_ns"] = 1e9 * median(seconds[1]) / static_cast<double>(kPoints);
+    std::vector<double> ratio(seconds[0].size());
+    for (size_t k = 0; k < ratio.size(); ++k) ratio[k] = seconds[1][k] / seconds[0][k];
+    state.counters["portable_over_scalar"] = median(ratio);
+    state.counters["portable_over_scalar_min"] = *std::min_element(ratio.begin(), ratio.end());
+    state.counters["portable_over_scalar_max"] = *std::max_element(ratio.begin(), ratio.end());
+}
+BENCHMARK(BM_AirlightScalarPaths)->Arg(0)->Arg(1)->Arg(2)->Iterations(200)->Unit(benchmark::kMillisecond);
+
 // ------------------------------------------------------------------ whole process
 
 // `scatterlut generate` as a child process (the default run, or --scene FILE for each

@@ -2,7 +2,9 @@
 
 #include "require.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -191,10 +193,12 @@ double AirlightTable::F(double u, double v) const {
     return std::fmax(slut_F_from_tails(u, v, whole, tail(u, v)), 0.0);
 }
 
-// A segment short enough for one panel takes the θ-integral directly (6 exps, more
-// accurate than the table and cheaper than two lookups); the others the two table samples
-// (slut_airlight_from_gs, which still integrates where they would cancel).
-double AirlightTable::radiance(const AirlightQuery &q) const {
+double detail::airlight_radiance_portable(const AirlightTable &table, const AirlightQuery &q) {
+    return table.radiance_portable(q);
+}
+
+// The portable radiance (see AirlightTable::radiance below).
+double AirlightTable::radiance_portable(const AirlightQuery &q) const {
     const slut_airlight_geometry g = setup_near_end_unscaled(q);
     if (g.kind != 0) return slut_airlight_from_gs(g, 0.0, 0.0);
     // Beyond plain products (scales or lengths near the ends of the double range): the
@@ -226,7 +230,8 @@ using simd4::v4d;
 // slut_airlight_theta_integral_one_panel's six nodes as two 4-lane vectors (the last two
 // lanes weight 0), e^{−σ_t D} folded into the node exponentials: the same sum in 2 vector
 // exps instead of 7 scalar ones and a third of the divides.
-SLUT_SIMD4_TARGET double one_panel_radiance4(const slut_airlight_geometry &g) {
+// (always inline: AirlightScalar4's call too; one_panel_radiance4 below for the portable path)
+SLUT_SIMD4_TARGET inline __attribute__((always_inline)) double one_panel_radiance4_inline(const slut_airlight_geometry &g) {
     const v4d x0 = {-slut_gl6_x[0], -slut_gl6_x[1], -slut_gl6_x[2], slut_gl6_x[0]};
     const v4d x1 = {slut_gl6_x[1], slut_gl6_x[2], 0.0, 0.0};
     const v4d w0 = {slut_gl6_w[0], slut_gl6_w[1], slut_gl6_w[2], slut_gl6_w[0]};
@@ -240,6 +245,7 @@ SLUT_SIMD4_TARGET double one_panel_radiance4(const slut_airlight_geometry &g) {
     // half_len·sum would underflow where the radiance does not.
     return g.scale_unattenuated * ((half_len / g.sin_gamma) * ((f[0] + f[1]) + (f[2] + f[3])));
 }
+SLUT_SIMD4_TARGET double one_panel_radiance4(const slut_airlight_geometry &g) { return one_panel_radiance4_inline(g); }
 } // namespace
 #endif
 
@@ -327,7 +333,8 @@ void exps2(double a, double b, double *ea, double *eb) {
 
 // ln G̃ at unit coordinates from the float copy: sample_encoded_at_unit's 2-D case (the
 // same lerps in the same order: identical values) with the u cell given.
-double AirlightTable::ln_gs_at(int cell_u, double frac_u, double unit_w) const {
+inline __attribute__((always_inline)) double AirlightTable::ln_gs_at(int cell_u, double frac_u,
+                                                                        double unit_w) const {
     int cell_w;
     double frac_w;
     slut_cell_from_unit(unit_w, count_w_, &cell_w, &frac_w);
@@ -381,6 +388,151 @@ double AirlightTable::two_sample_radiance(const slut_airlight_geometry &geometry
     if (far_term <= 0.5 * viewer_term) return g.scale_unattenuated * (viewer_term - far_term);
     g = slut_airlight_set_scale(g);
     return g.scale * (theta_rule8(g.c, g.w2, slut_airlight_dv(g)) / g.sin_gamma);
+}
+
+#if SLUT_HAVE_SIMD4
+namespace {
+// a ≤ b ? if_true : if_false without a branch (a blend). The geometry's tests (x ≥ 0, y ≥ 0,
+// γ/2 ≤ π/4) go either way at random across queries: as branches they mispredict often.
+SLUT_SIMD4_TARGET inline double select_le(double a, double b, double if_true, double if_false) {
+    const __m128d mask = _mm_cmp_sd(_mm_set_sd(a), _mm_set_sd(b), _CMP_LE_OQ);
+    return _mm_cvtsd_f64(_mm_blendv_pd(_mm_set_sd(if_false), _mm_set_sd(if_true), mask));
+}
+} // namespace
+
+// The one-panel rule's six node exponentials as one 8-lane exp where the CPU has AVX-512
+// (libmvec's _ZGVeN8v_exp, ≤ 4 ulp like the 4-lane one): one_panel_radiance4's nodes, weights
+// and order of additions (lanes 0–3 its first vector, 4–7 its second).
+namespace {
+typedef double v8d __attribute__((vector_size(64)));
+} // namespace
+extern "C" __attribute__((target("avx512f"))) v8d _ZGVeN8v_exp(v8d);
+namespace {
+bool has_avx512f() {
+    static const bool yes = [] {
+        __builtin_cpu_init();
+        return __builtin_cpu_supports("avx512f") != 0;
+    }();
+    return yes;
+}
+__attribute__((target("avx512f,avx2,fma"))) __attribute__((noinline)) double
+one_panel_radiance8(const slut_airlight_geometry &g) {
+    const v8d x = {-slut_gl6_x[0], -slut_gl6_x[1], -slut_gl6_x[2], slut_gl6_x[0], slut_gl6_x[1], slut_gl6_x[2], 0.0, 0.0};
+    const v8d w = {slut_gl6_w[0], slut_gl6_w[1], slut_gl6_w[2], slut_gl6_w[0], slut_gl6_w[1], slut_gl6_w[2], 0.0, 0.0};
+    const double half_len = 0.5 * g.tan_dv;
+    const v8d t = half_len * (1.0 + x);
+    const v8d e = -g.c * t / (g.cos_half - t * g.sin_half) - g.optical_distance;
+    const v8d f = w / (1.0 + t * t) * _ZGVeN8v_exp(e);
+    return g.scale_unattenuated *
+           ((half_len / g.sin_gamma) * (((f[0] + f[4]) + (f[1] + f[5])) + ((f[2] + f[6]) + (f[3] + f[7]))));
+}
+} // namespace
+
+// AirlightTable::radiance where the CPU has AVX2 and FMA: radiance_portable's paths (the
+// one-panel θ-rule, the two table samples, the 8-point θ-rule where they cancel) with the
+// geometry of slut_airlight_setup_near_end_unscaled and slut_sincos_half_angle written
+// without branches on the geometry (blends; |x| + d in place of the two signs' d ± x) and
+// its independent divides, square roots and transcendentals as 4-lane vector operations:
+// one divide for tan w1, cot w1's factor and tan dv (and their reciprocals), one atan for
+// w1 and dv, one log for the three warps, one exp for the two decodes and e^{−σ_t D} (and the
+// one-panel rule's six exps as one 8-lane exp where the CPU has AVX-512). The
+// same formulas (FMA contraction aside: 1e-12 against the portable path, test
+// ScalarRadianceMatchesThePortablePath). Queries outside its plain range take the portable path.
+struct AirlightScalar4 {
+    SLUT_SIMD4_TARGET static double radiance(const AirlightTable &t, const AirlightQuery &q) {
+        using simd4::v4d;
+        // check_airlight_query's conditions as one test (it throws, naming the field, if one fails).
+        const double limit = std::numeric_limits<double>::max();
+        const bool valid = (q.sigma_s_per_m >= 0.0) & (q.sigma_s_per_m <= limit) & (q.sigma_a_per_m >= 0.0) &
+                           (q.sigma_a_per_m <= limit) & (q.intensity_W_per_sr >= 0.0) &
+                           (q.intensity_W_per_sr <= limit) & (q.distance_m > 0.0) & (q.distance_m <= limit) &
+                           (q.gamma_rad >= 0.0) & (q.gamma_rad <= 3.14159265358979323846 + 1e-15) & (q.length_m >= 0.0);
+        if (!valid) check_airlight_query(q);
+        const double sigma_s = q.sigma_s_per_m, intensity = q.intensity_W_per_sr, D = q.distance_m, s = q.length_m;
+        const double sigma_t = sigma_s + q.sigma_a_per_m;
+        const double optical_distance = sigma_t * D;
+        const double scale_unattenuated = sigma_s * SLUT_INV_4PI * intensity * 2.0 / D;
+        // The finite radiance (σ_s, I0, s > 0; γ > 0: not on the axis, where the ray may pass
+        // through the light), a finite ray and plain products (slut_airlight_scale_is_plain);
+        // the rest: the portable path. One branch for all of it.
+        const bool plain = (sigma_s > 0.0) & (intensity > 0.0) & (q.gamma_rad > 0.0) & (s >= 1e-100) & (s <= 1e100) &
+                           (D >= 1e-100) & (D <= 1e100) & (scale_unattenuated >= 1e-100) &
+                           (scale_unattenuated <= 1e100) & (optical_distance <= 300.0);
+        if (!plain) return t.radiance_portable(q);
+        // slut_sincos_half_angle (h ≤ π/4: the Taylor forms at h, else at π/2 − h, swapped).
+        const double half = std::min(0.5 * q.gamma_rad, SLUT_PIO2_HI);
+        const double w2 = slut_pio2_minus(half);
+        const double quarter = 0.78539816339744828;
+        double sin_reduced, cos_reduced;
+        slut_sincos_quarter(select_le(half, quarter, half, w2), &sin_reduced, &cos_reduced);
+        const double sin_half = select_le(half, quarter, sin_reduced, cos_reduced);
+        const double cos_half = select_le(half, quarter, cos_reduced, sin_reduced);
+        // slut_airlight_setup_near_end_unscaled (moderate lengths: s, D ≤ 1e100).
+        const double sin_gamma = std::max(2.0 * sin_half * cos_half, SLUT_TINY);
+        const double cos_gamma = (cos_half - sin_half) * (cos_half + sin_half);
+        const double u = optical_distance * sin_gamma;
+        const double c = 2.0 * sigma_t * D * sin_half;
+        const double d_far = std::sqrt((s - D) * (s - D) + 4.0 * s * D * sin_half * sin_half);
+        const double x = s - D * cos_gamma, ds = D * sin_gamma;
+        const double y = D - s * cos_gamma, ss = s * sin_gamma;
+        // d + |x| is d + x for x ≥ 0 and d − x below (never cancels): tan w1 = ds/(d + x) or
+        // (d − x)/ds, tan dv likewise with y and ss.
+        const double dx = d_far + std::fabs(x), dy = d_far + std::fabs(y);
+        const v4d ratios = v4d{ds, dx, ss, dy} / v4d{dx, ds, dy, ss};
+        const double tan_w1 = select_le(0.0, x, ratios[0], ratios[1]);
+        const double tan_dv = select_le(0.0, y, ratios[2], ratios[3]);
+        if (tan_dv <= 0.25 * w2 && c * tan_dv <= 4.0 * cos_half) { // slut_airlight_theta_fits_one_panel
+            slut_airlight_geometry g;
+            g.c = c;
+            g.cos_half = cos_half;
+            g.sin_half = sin_half;
+            g.tan_dv = tan_dv;
+            g.optical_distance = optical_distance;
+            g.scale_unattenuated = scale_unattenuated;
+            g.sin_gamma = sin_gamma;
+            return has_avx512f() ? one_panel_radiance8(g) : one_panel_radiance4_inline(g);
+        }
+        if (!t.fast_lookup_) return t.radiance_portable(q);
+        const double optical_delta = sigma_t * std::max(s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D), 0.0);
+        const double a1 = sigma_t * select_le(0.0, x, dx, ds * ratios[0]);
+        const double a2 = optical_distance * (2.0 * sin_half * sin_half);
+        const v4d angles = simd4::atan4(v4d{tan_w1, tan_dv, 0.0, 0.0}); // w1, dv
+        const double w1 = angles[0];
+        if (!(w1 >= t.w_min_) || !(u > 0.0) || u > t.u_max_) return t.radiance_portable(q); // asymptotic forms
+        // The warps: u's LOG1P (Goldberg's form) and the two ends' ASINH_COT from cot w = a/u.
+        const slut_axis &axis_u = t.table_.axes[0].map;
+        const v4d quotients = v4d{u - axis_u.min, a2, a1, 1.0} / v4d{axis_u.scale, u, u, 1.0};
+        const double x_u = quotients[0], cot2 = quotients[1], cot1 = quotients[2], one_plus_x_u = 1.0 + x_u;
+        const v4d roots = simd4::sqrt4(v4d{1.0 + cot2 * cot2, 1.0 + cot1 * cot1, 1.0, 1.0});
+        const v4d logs = simd4::log4(v4d{one_plus_x_u, cot2 + roots[0], cot1 + roots[1], 1.0});
+        const double goldberg = one_plus_x_u == 1.0 ? 1.0 : x_u / (one_plus_x_u - 1.0);
+        const double g_u = one_plus_x_u == 1.0 ? x_u : logs[0] * goldberg;
+        const v4d units = (v4d{g_u, -logs[1], -logs[2], 1.0} - v4d{t.cache_.g0[0], t.cache_.g0[1], t.cache_.g0[1], 0.0}) /
+                          v4d{t.cache_.g1[0] - t.cache_.g0[0], t.cache_.g1[1] - t.cache_.g0[1],
+                              t.cache_.g1[1] - t.cache_.g0[1], 1.0};
+        const double unit_u = u >= axis_u.max ? 1.0 : units[0];
+        int cell_u;
+        double frac_u;
+        slut_cell_from_unit(unit_u, t.count_u_, &cell_u, &frac_u);
+        const double ln2 = t.ln_gs_at(cell_u, frac_u, units[1]), ln1 = t.ln_gs_at(cell_u, frac_u, units[2]);
+        const v4d e = simd4::exp4(v4d{ln2 - optical_distance, ln1 - optical_distance - optical_delta, -optical_distance, 0.0});
+        const v4d terms = v4d{w2, w1, 0.0, 0.0} / v4d{sin_gamma, sin_gamma, 1.0, 1.0};
+        const double viewer_term = terms[0] * e[0], far_term = terms[1] * e[1];
+        if (far_term <= 0.5 * viewer_term) return scale_unattenuated * (viewer_term - far_term);
+        // The two terms would cancel: slut_airlight_from_gs's θ-integral.
+        return (scale_unattenuated * e[2]) * (theta_rule8_simd(c, w2, angles[1]) / sin_gamma);
+    }
+};
+#endif
+
+// A segment short enough for one panel takes the θ-integral directly (6 exps, more
+// accurate than the table and cheaper than two lookups); the others the two table samples
+// (slut_airlight_from_gs, which still integrates where they would cancel).
+double AirlightTable::radiance(const AirlightQuery &q) const {
+#if SLUT_HAVE_SIMD4
+    if (simd4::available()) return AirlightScalar4::radiance(*this, q);
+#endif
+    return radiance_portable(q);
 }
 
 // ------------------------------------------------------------------ batch radiance

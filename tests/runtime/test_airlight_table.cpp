@@ -59,6 +59,17 @@ const scatterlut::AirlightTable &host_table_f32() {
     return table;
 }
 
+// The hard cases (as HardCasesStayFiniteAndAccurate's, with the ray through the light,
+// s = 0 and I0 = 0): 13 queries.
+std::vector<scatterlut::AirlightQuery> hard_queries() {
+    const double inf = std::numeric_limits<double>::infinity();
+    return {{0.5, 0.5, 1.0, 200.0, 1.5, 10.0}, {5.0, 5.0, 1.0, 30.0, 0.5, inf}, {1e-9, 0.0, 1.0, 3.0, 2.0, 50.0},
+            {0.0, 0.0, 1.0, 3.0, 2.0, 50.0},   {0.3, 0.1, 1.0, 5.0, 0.0, 2.0},  {0.3, 0.1, 1.0, 5.0, kPi, 2.0},
+            {0.3, 0.1, 1.0, 5.0, kPi - 1e-12, inf}, {0.3, 0.1, 1.0, 5.0, 1.0, 1e-12}, {0.3, 0.1, 1.0, 1e-6, 2.5, 1.0},
+            {0.3, 0.1, 1.0, 5.0, 1e-7, 4.999}, {0.3, 0.1, 1.0, 5.0, 0.0, 6.0},  {0.3, 0.1, 1.0, 5.0, 1.0, 0.0},
+            {0.3, 0.1, 0.0, 5.0, 1.0, 3.0}};
+}
+
 // Geometries of the acceptance domain (RadianceWithinTenthOfAPercentOverTheAcceptanceDomain).
 std::vector<scatterlut::AirlightQuery> acceptance_queries(int count, unsigned seed) {
     std::mt19937_64 rng(seed);
@@ -343,14 +354,8 @@ TEST(AirlightTable, FloatTablePathMatchesTheGeneralLookup) {
 // acceptance domain, the hard cases and the ray through the light (+inf), with zero radiance
 // (s = 0, σ_s = 0) exactly 0.
 TEST(AirlightTable, BatchMatchesScalarPerQuery) {
-    const double inf = std::numeric_limits<double>::infinity();
     std::vector<scatterlut::AirlightQuery> queries = acceptance_queries(4000, 29);
-    const scatterlut::AirlightQuery hard[] = {
-        {0.5, 0.5, 1.0, 200.0, 1.5, 10.0}, {5.0, 5.0, 1.0, 30.0, 0.5, inf}, {1e-9, 0.0, 1.0, 3.0, 2.0, 50.0},
-        {0.0, 0.0, 1.0, 3.0, 2.0, 50.0},   {0.3, 0.1, 1.0, 5.0, 0.0, 2.0},  {0.3, 0.1, 1.0, 5.0, kPi, 2.0},
-        {0.3, 0.1, 1.0, 5.0, kPi - 1e-12, inf}, {0.3, 0.1, 1.0, 5.0, 1.0, 1e-12}, {0.3, 0.1, 1.0, 1e-6, 2.5, 1.0},
-        {0.3, 0.1, 1.0, 5.0, 1e-7, 4.999}, {0.3, 0.1, 1.0, 5.0, 0.0, 6.0},  {0.3, 0.1, 1.0, 5.0, 1.0, 0.0},
-        {0.3, 0.1, 0.0, 5.0, 1.0, 3.0}};
+    const std::vector<scatterlut::AirlightQuery> hard = hard_queries();
     for (size_t k = 0; k < queries.size(); k += 97) queries.insert(queries.begin() + static_cast<long>(k), hard[(k / 97) % 13]);
     for (const scatterlut::AirlightTable *table : {&host_table(), &host_table_f32()}) {
         for (size_t count : {size_t{0}, size_t{1}, size_t{3}, size_t{4}, size_t{5}, size_t{7}, size_t{13}, queries.size()}) {
@@ -402,5 +407,37 @@ TEST(AirlightTable, ExactAxisWithStrongAttenuationDoesNotUnderflow) {
         std::vector<double> out(batch.size());
         host_table_f32().radiance(batch.data(), batch.size(), out.data());
         for (double v : out) EXPECT_LE(rel_err(v, want), 1e-12) << sigma_t;
+    }
+}
+
+// The scalar radiance's AVX2 + FMA path (where the CPU has them; airlight.cpp,
+// AirlightScalar4) against the portable path it replaces, per query, on both tables
+// (the f64 one takes the portable two-sample path, the f32 one the vector one): the same
+// formulas with libmvec's exp, log and atan (≤ 4 ulp) in place of libm's and FMA
+// contraction, so 1e-12 relative (rounding only); zero and infinite radiance exactly.
+TEST(AirlightTable, ScalarRadianceMatchesThePortablePath) {
+    std::vector<scatterlut::AirlightQuery> queries = acceptance_queries(20000, 31);
+    const std::vector<scatterlut::AirlightQuery> hard = hard_queries();
+    queries.insert(queries.end(), hard.begin(), hard.end());
+    // and scales beyond plain products (the portable path's logarithms)
+    queries.push_back({1e-200, 0.0, 1.0, 1e-120, 1.0, 1e-110});
+    queries.push_back({0.3, 0.1, 1e200, 5.0, 1.0, 3.0});
+    for (const scatterlut::AirlightTable *table : {&host_table(), &host_table_f32()}) {
+        double worst = 0;
+        for (const auto &q : queries) {
+            const double want = scatterlut::detail::airlight_radiance_portable(*table, q);
+            const double got = table->radiance(q);
+            if (std::isinf(want) || want == 0.0) {
+                EXPECT_EQ(got, want) << "D=" << q.distance_m << " gamma=" << q.gamma_rad << " s=" << q.length_m;
+                continue;
+            }
+            worst = std::max(worst, rel_err(got, want));
+            EXPECT_LE(rel_err(got, want), 1e-12) << "D=" << q.distance_m << " gamma=" << q.gamma_rad
+                                                 << " s=" << q.length_m
+                                                 << " sigma_t=" << q.sigma_s_per_m + q.sigma_a_per_m;
+        }
+        char worst_text[32];
+        std::snprintf(worst_text, sizeof worst_text, "%.3g", worst);
+        RecordProperty(table == &host_table() ? "worst_rel_f64" : "worst_rel_f32", worst_text);
     }
 }

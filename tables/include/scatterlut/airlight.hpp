@@ -53,6 +53,13 @@ namespace detail {
 slut_airlight_geometry airlight_query_near_end(const AirlightQuery &q);
 } // namespace detail
 
+class AirlightTable;
+namespace detail {
+// AirlightTable::radiance without its AVX2 + FMA path (libm and the kernels' functions
+// alone, as on CPUs without AVX2): the tests compare the two per query.
+double airlight_radiance_portable(const AirlightTable &table, const AirlightQuery &q);
+} // namespace detail
+
 // A loaded F table (kind "airlight_F"): axis 0 u ∈ [0, u_max], axis 1 w = π/2 − v ∈
 // [w_min, π/2], channel 0 = ln G̃ (see kernels/slut_airlight.h).
 class AirlightTable {
@@ -93,7 +100,13 @@ public:
     double w_min() const { return w_min_; }
 
 private:
-    friend struct AirlightBatch; // the batch radiance (airlight.cpp)
+    friend struct AirlightBatch;   // the batch radiance (airlight.cpp)
+    friend struct AirlightScalar4; // the scalar radiance where the CPU has AVX2 and FMA (airlight.cpp)
+    friend double detail::airlight_radiance_portable(const AirlightTable &table, const AirlightQuery &q);
+    // radiance() without the AVX2 + FMA path: libm and the kernels' functions alone (CPUs
+    // without AVX2, and the cases that path leaves: zero or divergent radiance, infinite rays,
+    // scales beyond plain products, f64 tables, ends beyond the table).
+    double radiance_portable(const AirlightQuery &q) const;
     double unit_u(double u) const;                                     // u's unit coordinate
     double scaled_tail_at(double unit_u, double u, double w, double a) const; // G̃ given it
     // The radiance's two paths (airlight.cpp), from the geometry without its e^{−σ_t D}.
