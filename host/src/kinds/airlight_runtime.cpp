@@ -1,6 +1,8 @@
-// The airlight F table's runtime facet (kinds/runtime_kind.hpp): its sampler, AirlightTable
-// (tables/src/airlight.cpp), and the eval quantities F and airlight. Its descriptor:
-// kinds/airlight_kind.cpp.
+// The airlight tables' runtime facets (kinds/runtime_kind.hpp). airlight_F: its sampler,
+// AirlightTable (tables/src/airlight.cpp), and the eval quantities F and airlight.
+// airlight_Fg: its sampler, AirlightHgTable (tables/src/airlight_hg.cpp), and no eval quantity
+// of its own: eval answers "airlight" queries with "phase_g" ≠ 0 from a loaded table of that g
+// (eval.cpp). Their descriptor: kinds/airlight_kind.cpp.
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -9,6 +11,7 @@
 #include "eval.hpp"
 #include "kinds/runtime_kind.hpp"
 #include "scatterlut/airlight.hpp"
+#include "scatterlut/airlight_hg.hpp"
 
 extern "C" {
 #include "slut_airlight.h"
@@ -17,12 +20,9 @@ extern "C" {
 namespace scatterlut {
 namespace {
 
-class AirlightRuntime final : public RuntimeKind {
+class AirlightRuntime final : public RuntimeKindOf<AirlightTable> {
 public:
-    const char *name() const override { return kKindAirlightF; }
-    std::shared_ptr<const RuntimeSampler> make_sampler(Table table) const override {
-        return std::make_shared<SamplerOf<AirlightTable>>(std::move(table));
-    }
+    AirlightRuntime() : RuntimeKindOf(kKindAirlightF) {}
     std::vector<std::string> eval_quantities() const override { return {"F", "airlight"}; }
     void answer_eval(const std::string &quantity, const nlohmann::json &q, nlohmann::json &out,
                      const EvalTables &tables) const override {
@@ -55,9 +55,11 @@ public:
 
 } // namespace
 
-const RuntimeKind &airlight_runtime_kind() {
-    static const AirlightRuntime kind;
-    return kind;
+const RuntimeKind &airlight_runtime_kind(bool anisotropic) {
+    static const AirlightRuntime isotropic_kind;
+    static const RuntimeKindOf<AirlightHgTable> anisotropic_kind(kKindAirlightFg);
+    if (anisotropic) return anisotropic_kind;
+    return isotropic_kind;
 }
 
 } // namespace scatterlut

@@ -2,8 +2,7 @@
 // NearLightTable (tables/src/nearlight.cpp), and the eval quantities N and near_light; and the
 // anisotropic kinds' (E3_hg, E4_hg): their sampler NearLightHgTable (tables/src/nearlight_hg.cpp)
 // and no eval quantity of their own (eval.cpp's answer_near_light_phase reads them for
-// near_light queries with a phase_g). One class, registered four times. Their descriptor:
-// kinds/nearlight_kind.cpp.
+// near_light queries with a phase_g). Their descriptor: kinds/nearlight_kind.cpp.
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -32,24 +31,13 @@ bool any_near_light(const EvalTables &tables) {
     return first_runtime<NearLightTable>(tables.samplers, [](const NearLightTable &) { return true; }) != nullptr;
 }
 
-class NearLightRuntime final : public RuntimeKind {
+// The isotropic kinds E3 and E4 (`name`); the anisotropic ones are plain RuntimeKindOf.
+class NearLightRuntime final : public RuntimeKindOf<NearLightTable> {
 public:
-    NearLightRuntime(bool finite_thickness, bool anisotropic) : finite_(finite_thickness), anisotropic_(anisotropic) {}
-    const char *name() const override {
-        if (anisotropic_) return finite_ ? kKindNearLightE4Hg : kKindNearLightE3Hg;
-        return finite_ ? kKindNearLightE4 : kKindNearLightE3;
-    }
-    std::shared_ptr<const RuntimeSampler> make_sampler(Table table) const override {
-        if (anisotropic_) return std::make_shared<SamplerOf<NearLightHgTable>>(std::move(table));
-        return std::make_shared<SamplerOf<NearLightTable>>(std::move(table));
-    }
-    std::vector<std::string> eval_quantities() const override {
-        if (anisotropic_) return {};
-        return {"N", "near_light"};
-    }
+    explicit NearLightRuntime(const char *name) : RuntimeKindOf(name) {}
+    std::vector<std::string> eval_quantities() const override { return {"N", "near_light"}; }
     void answer_eval(const std::string &quantity, const nlohmann::json &q, nlohmann::json &out,
                      const EvalTables &tables) const override {
-        if (anisotropic_) return; // no quantity of its own (eval_quantities)
         if (quantity == "N") {
             const double T = eval_number_field(q, "T"), g = eval_number_field(q, "g"), r = eval_number_field(q, "r"),
                          S = eval_number_field(q, "S");
@@ -77,31 +65,15 @@ public:
         eval_put(out, "approx", near_light_radiance_thin(n));
         eval_put(out, "distant", near_light_radiance_distant(n));
     }
-
-private:
-    bool finite_, anisotropic_;
 };
 
 } // namespace
 
-const RuntimeKind &near_light_thick_runtime_kind() {
-    static const NearLightRuntime kind(false, false);
-    return kind;
-}
-
-const RuntimeKind &near_light_slab_runtime_kind() {
-    static const NearLightRuntime kind(true, false);
-    return kind;
-}
-
-const RuntimeKind &near_light_thick_hg_runtime_kind() {
-    static const NearLightRuntime kind(false, true);
-    return kind;
-}
-
-const RuntimeKind &near_light_slab_hg_runtime_kind() {
-    static const NearLightRuntime kind(true, true);
-    return kind;
+const RuntimeKind &near_light_runtime_kind(bool finite_thickness, bool anisotropic) {
+    static const NearLightRuntime thick(kKindNearLightE3), slab(kKindNearLightE4);
+    static const RuntimeKindOf<NearLightHgTable> thick_hg(kKindNearLightE3Hg), slab_hg(kKindNearLightE4Hg);
+    if (anisotropic) return finite_thickness ? slab_hg : thick_hg;
+    return finite_thickness ? slab : thick;
 }
 
 } // namespace scatterlut

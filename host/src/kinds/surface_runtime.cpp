@@ -52,12 +52,9 @@ const SurfaceTable *table_serving(const EvalTables &tables, int exponent, double
     });
 }
 
-class SurfaceRuntime final : public RuntimeKind {
+class SurfaceRuntime final : public RuntimeKindOf<SurfaceTable> {
 public:
-    const char *name() const override { return kKindSurfaceG; }
-    std::shared_ptr<const RuntimeSampler> make_sampler(Table table) const override {
-        return std::make_shared<SamplerOf<SurfaceTable>>(std::move(table));
-    }
+    SurfaceRuntime() : RuntimeKindOf(kKindSurfaceG) {}
     std::vector<std::string> eval_quantities() const override { return {"surface", "surface_specular"}; }
     void answer_eval(const std::string &quantity, const nlohmann::json &q, nlohmann::json &out,
                      const EvalTables &tables) const override {
