@@ -31,46 +31,43 @@ bool any_near_light(const EvalTables &tables) {
     return first_runtime<NearLightTable>(tables.samplers, [](const NearLightTable &) { return true; }) != nullptr;
 }
 
-// The isotropic kinds E3 and E4 (`name`); the anisotropic ones are plain RuntimeKindOf.
-class NearLightRuntime final : public RuntimeKindOf<NearLightTable> {
-public:
-    explicit NearLightRuntime(const char *name) : RuntimeKindOf(name) {}
-    std::vector<std::string> eval_quantities() const override { return {"N", "near_light"}; }
-    void answer_eval(const std::string &quantity, const nlohmann::json &q, nlohmann::json &out,
-                     const EvalTables &tables) const override {
-        if (quantity == "N") {
-            const double T = eval_number_field(q, "T"), g = eval_number_field(q, "g"), r = eval_number_field(q, "r"),
-                         S = eval_number_field(q, "S");
-            if (!(T > 0.0) || !std::isfinite(T)) throw std::invalid_argument("T must be finite and > 0");
-            if (!(g >= -1.0 && g <= 1.0)) throw std::invalid_argument("g must lie in [-1, 1]");
-            if (!(r >= 0.0)) throw std::invalid_argument("r must be >= 0");
-            if (!(S >= 0.0)) throw std::invalid_argument("S must be >= 0 (or \"inf\")");
-            const double H = slut_nl_H(T, g, S), E = slut_nl_E(T, g, r, S);
-            eval_put(out, "exact", (H > 0.0 && std::isfinite(H)) ? E * H : H);
-            eval_put(out, "E", E);
-            eval_put(out, "H", H);
-            const NearLightTable *t = covering(tables, T, g, r, S);
-            if (t) eval_put(out, "table", t->E(T, g, r, S) * H);
-            else out["table"] = nullptr;
-            eval_put(out, "approx", slut_nl_N_thin(T, g, r, S));
-            return;
-        }
-        const NearLightQuery n = eval_near_light_query(q); // quantity "near_light"
-        eval_put(out, "exact", near_light_radiance_exact(n)); // validates the query
-        const NearLightParams p = near_light_params(n);
-        const NearLightTable *t = p.light_below ? nullptr : covering(tables, p.T, p.g, p.r, p.S);
-        if (t) eval_put(out, "table", t->radiance(n));
-        else if (p.light_below && any_near_light(tables)) out["table"] = 0.0;
-        else out["table"] = nullptr;
-        eval_put(out, "approx", near_light_radiance_thin(n));
-        eval_put(out, "distant", near_light_radiance_distant(n));
-    }
-};
+// "N": N = E·H at (T, g, r, S), exact and from the table covering it.
+void answer_N(const nlohmann::json &q, nlohmann::json &out, const EvalTables &tables) {
+    const double T = eval_number_field(q, "T"), g = eval_number_field(q, "g"), r = eval_number_field(q, "r"),
+                 S = eval_number_field(q, "S");
+    if (!(T > 0.0) || !std::isfinite(T)) throw std::invalid_argument("T must be finite and > 0");
+    if (!(g >= -1.0 && g <= 1.0)) throw std::invalid_argument("g must lie in [-1, 1]");
+    if (!(r >= 0.0)) throw std::invalid_argument("r must be >= 0");
+    if (!(S >= 0.0)) throw std::invalid_argument("S must be >= 0 (or \"inf\")");
+    const double H = slut_nl_H(T, g, S), E = slut_nl_E(T, g, r, S);
+    eval_put(out, "exact", (H > 0.0 && std::isfinite(H)) ? E * H : H);
+    eval_put(out, "E", E);
+    eval_put(out, "H", H);
+    const NearLightTable *t = covering(tables, T, g, r, S);
+    if (t) eval_put(out, "table", t->E(T, g, r, S) * H);
+    else out["table"] = nullptr;
+    eval_put(out, "approx", slut_nl_N_thin(T, g, r, S));
+}
+
+// "near_light": the radiance of a view ray into the medium, exact, from the table, and the
+// thin-medium and distant-light closed forms.
+void answer_near_light(const nlohmann::json &q, nlohmann::json &out, const EvalTables &tables) {
+    const NearLightQuery n = eval_near_light_query(q);
+    eval_put(out, "exact", near_light_radiance_exact(n)); // validates the query
+    const NearLightParams p = near_light_params(n);
+    const NearLightTable *t = p.light_below ? nullptr : covering(tables, p.T, p.g, p.r, p.S);
+    if (t) eval_put(out, "table", t->radiance(n));
+    else if (p.light_below && any_near_light(tables)) out["table"] = 0.0;
+    else out["table"] = nullptr;
+    eval_put(out, "approx", near_light_radiance_thin(n));
+    eval_put(out, "distant", near_light_radiance_distant(n));
+}
 
 } // namespace
 
 const RuntimeKind &near_light_runtime_kind(bool finite_thickness, bool anisotropic) {
-    static const NearLightRuntime thick(kKindNearLightE3), slab(kKindNearLightE4);
+    static const RuntimeKindOf<NearLightTable> thick(kKindNearLightE3, {{"N", answer_N}, {"near_light", answer_near_light}});
+    static const RuntimeKindOf<NearLightTable> slab(kKindNearLightE4, {{"N", answer_N}, {"near_light", answer_near_light}});
     static const RuntimeKindOf<NearLightHgTable> thick_hg(kKindNearLightE3Hg), slab_hg(kKindNearLightE4Hg);
     if (anisotropic) return finite_thickness ? slab_hg : thick_hg;
     return finite_thickness ? slab : thick;

@@ -64,24 +64,38 @@ public:
                              const EvalTables &tables) const = 0;
 };
 
-// The runtime facet of a kind whose sampler is the runtime class R (AirlightHgTable, …): its
-// name and sampler, and no eval quantity of its own. A kind that answers eval queries
-// overrides eval_quantities and answer_eval.
-template <class R> class RuntimeKindOf : public RuntimeKind {
+// One eval quantity a kind answers: its "quantity" value and the function that answers a
+// query of it into `out`, using the loaded tables it can.
+struct EvalAnswer {
+    const char *quantity;
+    void (*answer)(const nlohmann::json &query, nlohmann::json &out, const EvalTables &tables);
+};
+
+// The runtime facet of a kind whose sampler is the runtime class R (AirlightTable, …): its
+// name, its sampler and the eval quantities it answers (none for some kinds).
+template <class R> class RuntimeKindOf final : public RuntimeKind {
 public:
-    explicit RuntimeKindOf(const char *name) : name_(name) {}
+    explicit RuntimeKindOf(const char *name, std::vector<EvalAnswer> answers = {})
+        : name_(name), answers_(std::move(answers)) {}
     const char *name() const override { return name_; }
     std::shared_ptr<const RuntimeSampler> make_sampler(Table table) const override {
         return std::make_shared<SamplerOf<R>>(std::move(table));
     }
-    std::vector<std::string> eval_quantities() const override { return {}; }
-    void answer_eval(const std::string &quantity, const nlohmann::json &, nlohmann::json &,
-                     const EvalTables &) const override {
-        throw std::logic_error(std::string("the kind ") + name_ + " answers no eval quantity ('" + quantity + "')");
+    std::vector<std::string> eval_quantities() const override {
+        std::vector<std::string> q;
+        for (const EvalAnswer &a : answers_) q.emplace_back(a.quantity);
+        return q;
+    }
+    void answer_eval(const std::string &quantity, const nlohmann::json &query, nlohmann::json &out,
+                     const EvalTables &tables) const override {
+        for (const EvalAnswer &a : answers_)
+            if (quantity == a.quantity) return a.answer(query, out, tables);
+        throw std::logic_error(std::string("the kind ") + name_ + " answers no eval quantity '" + quantity + "'");
     }
 
 private:
     const char *name_; // Table::kind of its tables (kKindAirlightF, …)
+    std::vector<EvalAnswer> answers_;
 };
 
 // Each kind's runtime facets, defined in kinds/<kind>_runtime.cpp and listed in
