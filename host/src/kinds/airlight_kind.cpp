@@ -155,7 +155,8 @@ public:
         const double g = this->plan_of(plan).phase_g;
         return this->served_queries(
             sample_airlight_queries(media_of_phase(scene, g), count, seed),
-            [g](const AirlightQuery &q) { return airlight_radiance_exact(q, g); }, [](const AirlightQuery &) { return true; },
+            [g](const AirlightQuery &q) { return airlight_radiance_exact(q, g); },
+            [](const AirlightQuery &) { return true; }, // every query: the table spans the scene's u
             describe_airlight_queries() + (kAnisotropic ? ", phase_g = " + fmt("%g", g) : std::string()) +
                 ", every colour channel; rays through the light (infinite radiance) left out");
     }

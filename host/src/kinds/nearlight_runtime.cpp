@@ -66,8 +66,8 @@ void answer_near_light(const nlohmann::json &q, nlohmann::json &out, const EvalT
 } // namespace
 
 const RuntimeKind &near_light_runtime_kind(bool finite_thickness, bool anisotropic) {
-    static const RuntimeKindOf<NearLightTable> thick(kKindNearLightE3, {{"N", answer_N}, {"near_light", answer_near_light}});
-    static const RuntimeKindOf<NearLightTable> slab(kKindNearLightE4, {{"N", answer_N}, {"near_light", answer_near_light}});
+    static const std::vector<EvalAnswer> answers = {{"N", answer_N}, {"near_light", answer_near_light}};
+    static const RuntimeKindOf<NearLightTable> thick(kKindNearLightE3, answers), slab(kKindNearLightE4, answers);
     static const RuntimeKindOf<NearLightHgTable> thick_hg(kKindNearLightE3Hg), slab_hg(kKindNearLightE4Hg);
     if (anisotropic) return finite_thickness ? slab_hg : thick_hg;
     return finite_thickness ? slab : thick;

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <random>
 #include <stdexcept>
 #include <string>
 
@@ -15,6 +14,7 @@
 #include "kinds/derivation.hpp"
 #include "kinds/planned_kind.hpp"
 #include "plan.hpp"
+#include "scene_queries.hpp"
 #include "text_format.hpp"
 #include "scatterlut/surface.hpp"
 #include "scatterlut/surface_table.hpp"
@@ -38,41 +38,6 @@ double exact_of(const SurfaceQuery &q, int n) {
 }
 double table_of(const SurfaceTable &table, const SurfaceQuery &q) {
     return table.exponent() == 1 ? table.irradiance(q) : table.specular(q);
-}
-
-// The scene's surface queries for exponent n: for every medium whose surfaces need n and every
-// point light lighting it, in equal shares, each colour channel in turn: D log-uniform over
-// the surfaces' light_distance_m, θ uniform in [0, π] (θ_s for n = 1, θ_r for n > 1).
-std::vector<SurfaceQuery> sample_surface_queries(const Scene &scene, int n, size_t count, uint64_t seed) {
-    struct Pair {
-        const SceneMedium *medium;
-        const SceneLight *light;
-    };
-    std::vector<Pair> pairs;
-    for (const SceneMedium &m : scene.media) {
-        if (!m.has_surfaces || m.sigma_s_per_m == 0) continue;
-        const std::vector<int> e = m.surfaces.exponents();
-        if (std::find(e.begin(), e.end(), n) == e.end()) continue;
-        for (const SceneLight &l : scene.lights)
-            if (l.type == LightType::Point && Scene::lights_medium(l, m)) pairs.push_back({&m, &l});
-    }
-    std::vector<SurfaceQuery> out;
-    if (pairs.empty()) return out;
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    for (size_t k = 0; k < count; ++k) {
-        const Pair &p = pairs[k % pairs.size()];
-        const size_t c = (k / pairs.size()) % 3;
-        const Range &d = p.medium->surfaces.light_distance_m;
-        SurfaceQuery q;
-        q.sigma_s_per_m = p.medium->sigma_s_rgb_per_m[c];
-        q.sigma_a_per_m = p.medium->sigma_a_rgb_per_m[c];
-        q.intensity_W_per_sr = p.light->intensity_W_per_sr;
-        q.distance_m = d.min * std::pow(d.max / d.min, unit(rng));
-        q.theta_rad = SLUT_PI * unit(rng);
-        out.push_back(q);
-    }
-    return out;
 }
 
 class SurfaceKind final : public PlannedKind<SurfaceKind, SurfacePlan, SurfaceTable, SurfaceQuery> {
