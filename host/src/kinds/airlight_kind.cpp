@@ -9,7 +9,6 @@
 #include <cmath>
 #include <memory>
 #include <string>
-#include <type_traits>
 
 #include "generate_airlight.hpp"
 #include "kinds/derivation.hpp"
@@ -65,7 +64,7 @@ Scene media_of_phase(const Scene &scene, double g) {
 // for those with g = 0 (airlight_F).
 template <class Runtime>
 class AirlightKind final : public PlannedKind<AirlightKind<Runtime>, AirlightPlan, Runtime, AirlightQuery> {
-    static constexpr bool kAnisotropic = std::is_same_v<Runtime, AirlightHgTable>;
+    using PlannedKind<AirlightKind<Runtime>, AirlightPlan, Runtime, AirlightQuery>::kAnisotropic;
 
 public:
     // For PlannedKind: the generator (generate_airlight.hpp) and the runtime's answers.
@@ -84,7 +83,6 @@ public:
     static double lookup(const Runtime &air, const double *uw, size_t) { return air.scaled_tail(uw[0], uw[1]); }
 
     const RuntimeKind &runtime() const override { return airlight_runtime_kind(kAnisotropic); }
-    bool per_phase() const override { return kAnisotropic; }
 
     void add_demand(const Scene &, const SceneMedium &m, const SceneLight &l, std::any &state,
                     PlannedTable &t) const override {

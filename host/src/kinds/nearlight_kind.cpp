@@ -9,7 +9,6 @@
 #include <limits>
 #include <memory>
 #include <string>
-#include <type_traits>
 
 #include "generate_nearlight.hpp"
 #include "kinds/derivation.hpp"
@@ -43,7 +42,7 @@ struct Demand {
 // NearLightTable for the isotropic ones (E3, E4).
 template <class Runtime>
 class NearLightKind final : public PlannedKind<NearLightKind<Runtime>, NearLightPlan, Runtime, NearLightQuery> {
-    static constexpr bool kAnisotropic = std::is_same_v<Runtime, NearLightHgTable>;
+    using PlannedKind<NearLightKind<Runtime>, NearLightPlan, Runtime, NearLightQuery>::kAnisotropic;
 
 public:
     // For PlannedKind: the generator (generate_nearlight.hpp) and the runtime's answers.
@@ -132,8 +131,6 @@ public:
         t.target_rel = d.relative_error;
         t.plan = p;
     }
-
-    bool per_phase() const override { return kAnisotropic; }
 
     const char *target_reason() const override { return "the radiance error: L = sigma_s p I0 sigma_t H E, H exact"; }
 

@@ -33,6 +33,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -41,11 +42,19 @@
 
 namespace scatterlut {
 
+// Whether a runtime class serves a Henyey–Greenstein kind: it records the phase's g (phase_g()).
+template <class Runtime, class = void> struct RecordsPhase : std::false_type {};
+template <class Runtime>
+struct RecordsPhase<Runtime, std::void_t<decltype(std::declval<const Runtime &>().phase_g())>> : std::true_type {};
+
 template <class Kind, class Plan, class Runtime, class Query> class PlannedKind : public TableKind {
 public:
     // What RadianceQueries::queries holds for this kind.
     using Queries = std::vector<Query>;
+    // A Henyey–Greenstein kind (airlight_Fg, near_light_E3_hg, …: one table per g, per_phase()).
+    static constexpr bool kAnisotropic = RecordsPhase<Runtime>::value;
 
+    bool per_phase() const override { return kAnisotropic; }
     void set_storage(std::any &plan, Storage storage) const override { plan_of(plan).storage = storage; }
     double integration_tolerance(const std::any &plan) const override { return plan_of(plan).integration_tolerance; }
     double interpolation_ln_floor() const override { return -HUGE_VAL; }
