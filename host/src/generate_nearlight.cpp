@@ -205,7 +205,7 @@ Table generate_table(Device &device, const NearLightPlan &plan, const Provenance
     t.values = integrate_nearlight_ln_E(device, t, progress, plan.integration_tolerance);
 
     t.accuracy.integration_max_rel =
-        measure_nearlight_integration(Sampler(t), nearlight_measurement_nodes(t, 400, 1),
+        measure_nearlight_integration(Sampler(t), random_table_nodes(t, 400, 1),
                                       IntegrationReference::FinerPanelRule);
     round_to_table_storage(t);
     const SamplingStats s = measure_nearlight_sampling(Sampler(t), 20000, 2);
@@ -224,16 +224,6 @@ Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const 
                                const std::function<void(double)> &progress) {
     if (plan.phase_g != 0.0) return generate_table<NearLightHgTable>(device, plan, provenance, progress);
     return generate_table<NearLightTable>(device, plan, provenance, progress);
-}
-
-std::vector<NodeIndex> nearlight_measurement_nodes(const Table &table, int nodes, uint64_t seed) {
-    std::mt19937_64 rng(seed);
-    const size_t n_axes = table.axes.size();
-    std::vector<NodeIndex> picks(static_cast<size_t>(nodes), NodeIndex{});
-    for (auto &p : picks)
-        for (size_t a = 0; a < n_axes; ++a)
-            p[a] = std::uniform_int_distribution<size_t>(0, static_cast<size_t>(table.axes[a].map.count - 1))(rng);
-    return picks;
 }
 
 namespace {

@@ -66,9 +66,6 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
 Table generate_nearlight_table(Device &device, const NearLightPlan &plan, const Provenance &provenance,
                                const std::function<void(double)> &progress = {});
 
-// The generator's nodes for its integration-error measurement: `nodes` random nodes from `seed`.
-std::vector<NodeIndex> nearlight_measurement_nodes(const Table &table, int nodes, uint64_t seed);
-
 // Relative error of the decoded E at `nodes` against `reference`: the finer panel rule
 // (slut_nl_E_lanes, refine = 2.5) or Boost.Math's Gauss–Kronrod (reference_quadrature.hpp).
 double measure_nearlight_integration(const NearLightTable &table, const std::vector<NodeIndex> &nodes,

@@ -82,21 +82,12 @@ Table generate_surface_table(Device &device, const SurfacePlan &plan, const Prov
     begin_generation(t, provenance, plan.integration_tolerance);
     t.values = integrate_surface_G(device, t, plan.integration_tolerance);
     t.accuracy.integration_max_rel = measure_surface_integration(
-        SurfaceTable(t), surface_measurement_nodes(t, 100, 1), IntegrationReference::FinerPanelRule);
+        SurfaceTable(t), random_table_nodes(t, 100, 1), IntegrationReference::FinerPanelRule);
     round_to_table_storage(t);
     const SamplingStats s = measure_surface_sampling(SurfaceTable(t), 4000, 2);
     record_sampling(t, s, std::string(plan.exponent == 1 ? "G0" : "G_n") +
                               "(T, theta) at uniform random unit coordinates of T and theta");
     return t;
-}
-
-std::vector<NodeIndex> surface_measurement_nodes(const Table &table, int nodes, uint64_t seed) {
-    std::mt19937_64 rng(seed);
-    std::vector<NodeIndex> picks(static_cast<size_t>(nodes), NodeIndex{});
-    for (auto &p : picks)
-        for (size_t a = 0; a < table.axes.size(); ++a)
-            p[a] = std::uniform_int_distribution<size_t>(0, static_cast<size_t>(table.axes[a].map.count - 1))(rng);
-    return picks;
 }
 
 double measure_surface_integration(const SurfaceTable &table, const std::vector<NodeIndex> &nodes,

@@ -45,9 +45,6 @@ std::vector<double> integrate_surface_G(Device &device, const Table &layout, dou
 // random points) and rounded to the plan's storage.
 Table generate_surface_table(Device &device, const SurfacePlan &plan, const Provenance &provenance);
 
-// The generator's nodes for its integration-error measurement: `nodes` random nodes from `seed`.
-std::vector<NodeIndex> surface_measurement_nodes(const Table &table, int nodes, uint64_t seed);
-
 // Relative error of the decoded G_n at `nodes` against `reference`: the adaptive Gauss–Kronrod
 // quadrature of the runtime (surface_G_exact, FinerPanelRule) or Boost.Math's on the physical
 // integral (reference_surface_G, IndependentGaussKronrod). +∞ if one is NaN.

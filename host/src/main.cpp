@@ -97,6 +97,23 @@ void setup_eval(CLI::App &app, int &exit_code) {
     cmd->callback([opt, &exit_code] { exit_code = run_eval(*opt); });
 }
 
+// The exit code of an error that ends a command: bad input (an unreadable table, an invalid
+// argument, no such device) or a failure (a checksum mismatch, a device or OpenCL error, any
+// other).
+int error_exit_code(const std::exception &e) {
+    if (dynamic_cast<const ChecksumError *>(&e)) return kExitFailure; // a LoadError, but the file's content is wrong
+    const bool bad_input = dynamic_cast<const LoadError *>(&e) || dynamic_cast<const std::invalid_argument *>(&e) ||
+                           dynamic_cast<const DeviceSelectionError *>(&e);
+    return bad_input ? kExitBadInput : kExitFailure;
+}
+
+// Its message: an OpenCL error names its code and the call.
+std::string error_text(const std::exception &e) {
+    if (const auto *cl_error = dynamic_cast<const cl::Error *>(&e))
+        return "OpenCL error " + std::to_string(cl_error->err()) + " in " + cl_error->what();
+    return e.what();
+}
+
 } // namespace
 } // namespace scatterlut
 
@@ -126,27 +143,9 @@ int main(int argc, char **argv) {
             return kExitBadInput;
         }
         return app.exit(e) == 0 ? 0 : kExitBadInput;
-    } catch (const ChecksumError &e) {
-        std::cerr << "scatterlut: " << e.what() << "\n";
-        return kExitFailure;
-    } catch (const LoadError &e) {
-        std::cerr << "scatterlut: " << e.what() << "\n";
-        return kExitBadInput;
-    } catch (const std::invalid_argument &e) {
-        std::cerr << "scatterlut: " << e.what() << "\n";
-        return kExitBadInput;
-    } catch (const DeviceSelectionError &e) {
-        std::cerr << "scatterlut: " << e.what() << "\n";
-        return kExitBadInput;
-    } catch (const DeviceError &e) {
-        std::cerr << "scatterlut: " << e.what() << "\n";
-        return kExitFailure;
-    } catch (const cl::Error &e) {
-        std::cerr << "scatterlut: OpenCL error " << e.err() << " in " << e.what() << "\n";
-        return kExitFailure;
     } catch (const std::exception &e) {
-        std::cerr << "scatterlut: " << e.what() << "\n";
-        return kExitFailure;
+        std::cerr << "scatterlut: " << error_text(e) << "\n";
+        return error_exit_code(e);
     }
     return exit_code;
 }

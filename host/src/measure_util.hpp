@@ -3,8 +3,12 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
+#include <random>
 #include <thread>
 #include <vector>
+
+#include "measurement.hpp"
 
 namespace scatterlut {
 
@@ -26,6 +30,17 @@ inline double percentile(std::vector<double> v, double q) {
     const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5));
     std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
     return v[k];
+}
+
+// `nodes` nodes of `table` drawn uniformly from `seed`, each axis's index independently: where
+// the near-light and surface generators measure their integration error.
+inline std::vector<NodeIndex> random_table_nodes(const Table &table, int nodes, uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::vector<NodeIndex> picks(static_cast<size_t>(nodes), NodeIndex{});
+    for (auto &p : picks)
+        for (size_t a = 0; a < table.axes.size(); ++a)
+            p[a] = std::uniform_int_distribution<size_t>(0, static_cast<size_t>(table.axes[a].map.count - 1))(rng);
+    return picks;
 }
 
 } // namespace scatterlut

@@ -119,13 +119,11 @@ void setup_report(CLI::App &app, int &exit_code, const std::string &command_line
         ->required()
         ->check(non_empty_text("an output directory"));
     cmd->add_option("--device", opt->device, "OpenCL device: P:D index or name substring (env SCATTERLUT_DEVICE)");
-    cmd->add_option("--rounds", opt->rounds, "Interleaved timing rounds per measurement (median reported)")
-        ->check(integer_number())
-        ->check(CLI::Range(1, 100))
+    add_integer_option(cmd, "--rounds", opt->rounds, "Interleaved timing rounds per measurement (median reported)", 1,
+                       100)
         ->capture_default_str();
-    cmd->add_option("--queries", opt->queries, "Random radiance queries over the scene's domain per table")
-        ->check(integer_number())
-        ->check(CLI::Range(100, 1000000))
+    add_integer_option(cmd, "--queries", opt->queries, "Random radiance queries over the scene's domain per table", 100,
+                       1000000)
         ->capture_default_str();
     cmd->callback([opt, &exit_code, &command_line] { exit_code = run_report(*opt, command_line); });
 }

@@ -1,6 +1,8 @@
 #include "report_writers.hpp"
 
 #include <cstdint>
+#include <string>
+#include <utility>
 
 #include "text_format.hpp"
 #include "scatterlut/io.hpp"
@@ -40,12 +42,24 @@ std::string methods_csv(const std::vector<MethodRow> &rows) {
     return s;
 }
 
-Plot tolerance_plot(const std::string &kind, const std::vector<ToleranceRung> &rungs) {
+namespace {
+
+// A plot with both axes logarithmic.
+Plot log_log_plot(std::string title, std::string x_label, std::string y_label) {
     Plot p;
-    p.title = kind + ": integration tolerance ladder";
-    p.x_label = "generation time, in-process, median of interleaved rounds (ms)";
-    p.y_label = "max relative error at sampled nodes";
+    p.title = std::move(title);
+    p.x_label = std::move(x_label);
+    p.y_label = std::move(y_label);
     p.log_x = p.log_y = true;
+    return p;
+}
+
+} // namespace
+
+Plot tolerance_plot(const std::string &kind, const std::vector<ToleranceRung> &rungs) {
+    Plot p = log_log_plot(kind + ": integration tolerance ladder",
+                          "generation time, in-process, median of interleaved rounds (ms)",
+                          "max relative error at sampled nodes");
     PlotSeries s;
     s.label = "tolerance rungs";
     for (const auto &r : rungs) {
@@ -58,11 +72,8 @@ Plot tolerance_plot(const std::string &kind, const std::vector<ToleranceRung> &r
 }
 
 Plot resolution_plot(const std::string &kind, const std::vector<ResolutionRung> &rungs, double accepted) {
-    Plot p;
-    p.title = kind + ": resolution ladder (radiance over the scene's domain)";
-    p.x_label = "table size (bytes)";
-    p.y_label = "relative error of the sampled radiance";
-    p.log_x = p.log_y = true;
+    Plot p = log_log_plot(kind + ": resolution ladder (radiance over the scene's domain)", "table size (bytes)",
+                          "relative error of the sampled radiance");
     std::vector<PlotPoint> all;
     for (Storage st : {Storage::F32, Storage::F16}) {
         PlotSeries mx, p99;
@@ -90,11 +101,8 @@ Plot resolution_plot(const std::string &kind, const std::vector<ResolutionRung> 
 }
 
 Plot methods_plot(const std::string &kind, const std::vector<MethodRow> &rows, double accepted) {
-    Plot p;
-    p.title = kind + ": runtime methods for the same radiance";
-    p.x_label = "time per radiance call (ns)";
-    p.y_label = "relative error vs exact (median, p99, max)";
-    p.log_x = p.log_y = true;
+    Plot p = log_log_plot(kind + ": runtime methods for the same radiance", "time per radiance call (ns)",
+                          "relative error vs exact (median, p99, max)");
     for (const auto &r : rows) {
         if (r.reference) {
             p.vlines.push_back({r.ns_per_call, "exact (the reference) " + fmt("%.3g", r.ns_per_call) + " ns"});

@@ -61,12 +61,10 @@ void add_scene_options(CLI::App *cmd, SceneOptions &o) {
     cmd->add_option("--u-max", o.u_max, "Airlight table: largest u = sigma_t*D*sin(gamma) (default: from the scene)")
         ->check(finite_number())
         ->check(CLI::Range(1.0, 1e4));
-    cmd->add_option("--n-u", o.n_u, "Airlight table: nodes along u (fixes the resolution instead of searching)")
-        ->check(integer_number())
-        ->check(CLI::Range(8, 16384));
-    cmd->add_option("--n-w", o.n_w, "Airlight table: nodes along w = pi/2 - v (fixes the resolution)")
-        ->check(integer_number())
-        ->check(CLI::Range(8, 16384));
+    add_integer_option(cmd, "--n-u", o.n_u, "Airlight table: nodes along u (fixes the resolution instead of searching)",
+                       8, 16384);
+    add_integer_option(cmd, "--n-w", o.n_w, "Airlight table: nodes along w = pi/2 - v (fixes the resolution)", 8,
+                       16384);
     cmd->add_option("--w-min", o.w_min, "Airlight table: smallest w")
         ->check(finite_number())
         ->check(CLI::Range(1e-6, 0.1));

@@ -1,5 +1,6 @@
 #include "scene_queries.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -33,45 +34,51 @@ std::vector<std::pair<const SceneMedium *, const SceneLight *>> pairs(const Scen
     return out;
 }
 
-} // namespace
-
-std::vector<AirlightQuery> sample_airlight_queries(const Scene &scene, size_t count, uint64_t seed) {
-    const auto lit = pairs(scene, [](const SceneMedium &m) { return m.viewer_inside; });
-    std::vector<AirlightQuery> out;
+// `count` queries over the lit pairs in turn, the k-th from pair k mod their number, drawn
+// by draw(rng, medium, light, k) from one generator seeded with `seed`.
+template <class Query, class Draw>
+std::vector<Query> queries_over(const std::vector<std::pair<const SceneMedium *, const SceneLight *>> &lit,
+                                size_t count, uint64_t seed, Draw draw) {
+    std::vector<Query> out;
     if (lit.empty()) return out;
     Rng rng(seed);
     out.reserve(count);
     for (size_t k = 0; k < count; ++k) {
         const auto &[m, l] = lit[k % lit.size()];
+        out.push_back(draw(rng, *m, *l, k));
+    }
+    return out;
+}
+
+} // namespace
+
+std::vector<AirlightQuery> sample_airlight_queries(const Scene &scene, size_t count, uint64_t seed) {
+    const auto lit = pairs(scene, [](const SceneMedium &m) { return m.viewer_inside; });
+    const auto draw = [](Rng &rng, const SceneMedium &m, const SceneLight &l, size_t k) {
         AirlightQuery q;
-        q.sigma_s_per_m = m->sigma_s_per_m;
-        q.sigma_a_per_m = m->sigma_a_per_m;
-        q.intensity_W_per_sr = l->intensity_W_per_sr;
-        q.distance_m = spread(rng, l->distance_m);
+        q.sigma_s_per_m = m.sigma_s_per_m;
+        q.sigma_a_per_m = m.sigma_a_per_m;
+        q.intensity_W_per_sr = l.intensity_W_per_sr;
+        q.distance_m = spread(rng, l.distance_m);
         q.gamma_rad = std::acos(uniform(rng, -1.0, 1.0)); // γ: view direction ↔ direction viewer→light
         q.length_m = (k % 4 == 3) ? std::numeric_limits<double>::infinity()
                                   : q.distance_m * std::exp(uniform(rng, std::log(1e-3), std::log(10.0)));
-        out.push_back(q);
-    }
-    return out;
+        return q;
+    };
+    return queries_over<AirlightQuery>(lit, count, seed, draw);
 }
 
 std::vector<NearLightQuery> sample_near_light_queries(const Scene &scene, bool finite, size_t count, uint64_t seed) {
     const auto lit = pairs(scene, [finite](const SceneMedium &m) {
         return !m.viewer_inside && (finite ? m.has_thickness : m.thick);
     });
-    std::vector<NearLightQuery> out;
-    if (lit.empty()) return out;
-    Rng rng(seed);
     const double cos_view_max = std::cos(scene.view.max_view_angle_deg * kDegree);
     const double cos_light_max = std::cos(scene.view.max_light_angle_deg * kDegree);
-    out.reserve(count);
-    for (size_t k = 0; k < count; ++k) {
-        const auto &[m, l] = lit[k % lit.size()];
+    const auto draw = [&](Rng &rng, const SceneMedium &m, const SceneLight &l, size_t) {
         NearLightQuery q;
-        q.sigma_s_per_m = m->sigma_s_per_m;
-        q.sigma_a_per_m = m->sigma_a_per_m;
-        q.intensity_W_per_sr = l->intensity_W_per_sr;
+        q.sigma_s_per_m = m.sigma_s_per_m;
+        q.sigma_a_per_m = m.sigma_a_per_m;
+        q.intensity_W_per_sr = l.intensity_W_per_sr;
         // Uniform in solid angle within the cones: cos θ uniform.
         const double mu_e = uniform(rng, cos_view_max, 1.0);
         const double mu_l = uniform(rng, std::max(0.0, cos_light_max), 1.0);
@@ -79,7 +86,7 @@ std::vector<NearLightQuery> sample_near_light_queries(const Scene &scene, bool f
         const double sin_e = std::sqrt(std::max(0.0, 1.0 - mu_e * mu_e));
         const double sin_l = std::sqrt(std::max(0.0, 1.0 - mu_l * mu_l));
         const double eye[3] = {sin_e, 0.0, mu_e};
-        const double distance = spread(rng, l->distance_m);
+        const double distance = spread(rng, l.distance_m);
         for (int i = 0; i < 3; ++i) {
             q.normal[i] = i == 2 ? 1.0 : 0.0;
             q.eye_dir[i] = eye[i];
@@ -87,11 +94,32 @@ std::vector<NearLightQuery> sample_near_light_queries(const Scene &scene, bool f
         q.light_rel_m[0] = distance * sin_l * std::cos(phi);
         q.light_rel_m[1] = distance * sin_l * std::sin(phi);
         q.light_rel_m[2] = distance * mu_l;
-        q.length_m = finite ? uniform(rng, m->thickness_m.min, m->thickness_m.max) / mu_e
+        q.length_m = finite ? uniform(rng, m.thickness_m.min, m.thickness_m.max) / mu_e
                             : std::numeric_limits<double>::infinity();
-        out.push_back(q);
-    }
-    return out;
+        return q;
+    };
+    return queries_over<NearLightQuery>(lit, count, seed, draw);
+}
+
+std::vector<SurfaceQuery> sample_surface_queries(const Scene &scene, int exponent, size_t count, uint64_t seed) {
+    const auto lit = pairs(scene, [exponent](const SceneMedium &m) {
+        if (!m.has_surfaces) return false;
+        const std::vector<int> e = m.surfaces.exponents();
+        return std::find(e.begin(), e.end(), exponent) != e.end();
+    });
+    const size_t n_pairs = lit.size();
+    const auto draw = [n_pairs](Rng &rng, const SceneMedium &m, const SceneLight &l, size_t k) {
+        const size_t c = (k / n_pairs) % 3; // the colour channel
+        const Range &d = m.surfaces.light_distance_m;
+        SurfaceQuery q;
+        q.sigma_s_per_m = m.sigma_s_rgb_per_m[c];
+        q.sigma_a_per_m = m.sigma_a_rgb_per_m[c];
+        q.intensity_W_per_sr = l.intensity_W_per_sr;
+        q.distance_m = d.min * std::pow(d.max / d.min, uniform(rng, 0.0, 1.0));
+        q.theta_rad = kPi * uniform(rng, 0.0, 1.0);
+        return q;
+    };
+    return queries_over<SurfaceQuery>(lit, count, seed, draw);
 }
 
 std::string describe_airlight_queries() {

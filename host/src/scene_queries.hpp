@@ -11,6 +11,7 @@
 
 #include "scatterlut/airlight.hpp"
 #include "scatterlut/nearlight.hpp"
+#include "scatterlut/surface.hpp"
 #include "scene.hpp"
 
 namespace scatterlut {
@@ -29,6 +30,11 @@ std::vector<AirlightQuery> sample_airlight_queries(const Scene &scene, size_t co
 // range; a slab of thickness d (uniform over the range) is crossed along s = d/μ_e.
 // `finite`: slabs only (true) or thick media only (false).
 std::vector<NearLightQuery> sample_near_light_queries(const Scene &scene, bool finite, size_t count, uint64_t seed);
+
+// Lit surfaces of Phong exponent n (1: diffuse): for every medium whose surfaces need n and
+// every point light lighting it, in equal shares, each colour channel in turn: D log-uniform
+// over the surfaces' light_distance_m, θ uniform in [0, π] (θ_s for n = 1, θ_r for n > 1).
+std::vector<SurfaceQuery> sample_surface_queries(const Scene &scene, int exponent, size_t count, uint64_t seed);
 
 // One sentence for reports: what the samplers above draw.
 std::string describe_airlight_queries();

@@ -294,13 +294,10 @@ void setup_validate(CLI::App &app, int &exit_code) {
                     "Table files (.slut or .exr), or output directories (their manifest.json: one run's set)")
         ->required();
     cmd->add_flag("--json", opt->json, "One JSON object per file on stdout");
-    cmd->add_option("--nodes", opt->nodes, "Nodes re-integrated with a finer rule (corners included)")
-        ->check(integer_number())
-        ->check(CLI::Range(200, 1000000))
+    add_integer_option(cmd, "--nodes", opt->nodes, "Nodes re-integrated with a finer rule (corners included)", 200,
+                       1000000)
         ->capture_default_str();
-    cmd->add_option("--points", opt->points, "Random off-node points for the sampling error")
-        ->check(integer_number())
-        ->check(CLI::Range(2000, 10000000))
+    add_integer_option(cmd, "--points", opt->points, "Random off-node points for the sampling error", 2000, 10000000)
         ->capture_default_str();
     cmd->callback([opt, &exit_code] { exit_code = run_validate(*opt); });
 }

@@ -1,5 +1,6 @@
 #include "scatterlut/airlight.hpp"
 
+#include "airlight_layout.hpp"
 #include "require.hpp"
 
 #include <algorithm>
@@ -115,19 +116,9 @@ double airlight_radiance_no_extinction_attenuated(const AirlightQuery &q) {
 }
 
 AirlightTable::AirlightTable(Table table) : table_(std::move(table)) {
-    require(table_.kind == kKindAirlightF, "not an airlight F table (kind '" + table_.kind + "')");
-    require(table_.quantity_version == kAirlightFQuantityVersion,
-            "airlight table quantity version " + std::to_string(table_.quantity_version) +
-                " is not the one this library knows (" + std::to_string(kAirlightFQuantityVersion) + ")");
-    require(table_.axes.size() == 2 && table_.axes[0].name == "u" && table_.axes[1].name == "w",
-            "airlight table must have axes (u, w)");
-    require(!table_.channels.empty() && table_.channels[0].name == "ln_Gs" &&
-                table_.channels[0].encoding == Encoding::Log,
-            "airlight table channel 0 must be ln_Gs (log encoded)");
-    table_.check_consistent();
-    require(table_.axes[0].map.min == 0.0, "airlight table u axis must start at 0");
-    require(std::fabs(table_.axes[1].map.max - 1.5707963267948966) < 1e-12,
-            "airlight table w axis must end at pi/2");
+    detail::check_airlight_layout(table_, kKindAirlightF, kAirlightFQuantityVersion, "ln_Gs", "airlight table",
+                                  "an airlight F table");
+    detail::check_airlight_domain(table_, "airlight table");
     // G̃ ∈ (0, 1]: a stored ln G̃ above 0 (beyond rounding) or below −1e6 is no airlight value.
     const size_t stride = table_.channels.size();
     for (size_t i = 0; i < table_.values.size(); i += stride)

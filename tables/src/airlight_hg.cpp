@@ -1,5 +1,6 @@
 #include "scatterlut/airlight_hg.hpp"
 
+#include "airlight_layout.hpp"
 #include "require.hpp"
 
 #include <cmath>
@@ -41,21 +42,11 @@ double table_phase_g(const Table &table) {
 }
 
 AirlightHgTable::AirlightHgTable(Table table) : table_(std::move(table)) {
-    require(table_.kind == kKindAirlightFg, "not an anisotropic airlight table (kind '" + table_.kind + "')");
-    require(table_.quantity_version == kAirlightFgQuantityVersion,
-            "anisotropic airlight table quantity version " + std::to_string(table_.quantity_version) +
-                " is not the one this library knows (" + std::to_string(kAirlightFgQuantityVersion) + ")");
-    require(table_.axes.size() == 2 && table_.axes[0].name == "u" && table_.axes[1].name == "w",
-            "anisotropic airlight table must have axes (u, w)");
-    require(!table_.channels.empty() && table_.channels[0].name == "ln_Gs_g" &&
-                table_.channels[0].encoding == Encoding::Log,
-            "anisotropic airlight table channel 0 must be ln_Gs_g (log encoded)");
-    table_.check_consistent();
+    detail::check_airlight_layout(table_, kKindAirlightFg, kAirlightFgQuantityVersion, "ln_Gs_g",
+                                  "anisotropic airlight table", "an anisotropic airlight table");
     g_ = table_phase_g(table_);
     require(g_ != 0.0, "anisotropic airlight table with phase.g = 0: the isotropic table (airlight_F) serves g = 0");
-    require(table_.axes[0].map.min == 0.0, "anisotropic airlight table u axis must start at 0");
-    require(std::fabs(table_.axes[1].map.max - 1.5707963267948966) < 1e-12,
-            "anisotropic airlight table w axis must end at pi/2");
+    detail::check_airlight_domain(table_, "anisotropic airlight table");
     // G̃_g ∈ (0, ψ_max(g)]: ln G̃_g ≤ ln ψ_max (beyond rounding) and above −1e6.
     const double ln_max = std::log(slut_hg_psi_max(g_));
     const size_t stride = table_.channels.size();

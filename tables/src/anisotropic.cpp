@@ -29,7 +29,8 @@ double airlight_hg(const AirlightQuery &q, double phase_g) {
 }
 
 // The near light of one channel (q validated, phase_g ≠ 0): the parameters as
-// near_light_params (eye-side refraction included), E_g by quadrature, σ_s/(4π)·I0·E_g·(T·H)/l.
+// near_light_params (eye-side refraction included), E_g by quadrature, σ_s/(4π)·I0·E_g·(T·H)/l
+// assembled by slut_nl_assemble (kernels/slut_nearlight_frontend.h).
 double near_light_hg(const NearLightQuery &q, double phase_g) {
     double eye_inside[3] = {q.eye_dir[0], q.eye_dir[1], q.eye_dir[2]};
     const double mu_e = q.eye_dir[0] * q.normal[0] + q.eye_dir[1] * q.normal[1] + q.eye_dir[2] * q.normal[2];
@@ -42,13 +43,11 @@ double near_light_hg(const NearLightQuery &q, double phase_g) {
     slut_nl_params p;
     slut_nl_params_from_geometry(q.normal, eye_inside, q.light_rel_m, q.sigma_s_per_m + q.sigma_a_per_m, q.length_m,
                                  &p);
-    if (p.kind != SLUT_NL_OK || !(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0))
-        return 0.0;
-    if (!(p.distance_m > 0.0)) return HUGE_VAL;
-    const double H_scaled = slut_nl_H_scaled(p.g, p.S_over_T);
-    if (!std::isfinite(H_scaled)) return HUGE_VAL;
-    const double E = slut_hg_nl_E(p.T, p.g, p.r, p.S_over_T, phase_g, 1.0);
-    return transmittance * q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * E * H_scaled / p.distance_m;
+    // E_g by quadrature only where slut_nl_assemble multiplies by it (light, and a finite H).
+    const bool lit = p.kind == SLUT_NL_OK && q.sigma_s_per_m > 0.0 && q.intensity_W_per_sr > 0.0 && q.length_m > 0.0 &&
+                     p.distance_m > 0.0 && std::isfinite(slut_nl_H_scaled(p.g, p.S_over_T));
+    const double E = lit ? slut_hg_nl_E(p.T, p.g, p.r, p.S_over_T, phase_g, 1.0) : 0.0;
+    return slut_nl_assemble(p, q.sigma_s_per_m, q.intensity_W_per_sr, q.length_m, transmittance, E);
 }
 
 } // namespace

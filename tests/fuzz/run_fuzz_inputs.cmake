@@ -22,7 +22,7 @@ list(TRANSFORM slut_io_sources PREPEND tables/src/)
 foreach(s tables/src/table tables/src/sampler tables/src/airlight tables/src/nearlight tables/src/anisotropic
           tables/src/airlight_hg tables/src/nearlight_hg tables/src/surface tables/src/surface_table ${slut_io_sources}
           host/src/eval host/src/json_guard host/src/scene host/src/kinds/runtime_registry
-          host/src/kinds/airlight_runtime host/src/kinds/nearlight_runtime host/src/kinds/airlight_hg_runtime
+          host/src/kinds/airlight_runtime host/src/kinds/nearlight_runtime
           host/src/kinds/surface_runtime)
   get_filename_component(name ${s} NAME)
   step(${CLANGXX} ${flags} -fsanitize=fuzzer-no-link -c ${SOURCE_DIR}/${s}.cpp -o ${WORK_DIR}/obj/${name}.o)

@@ -1,7 +1,8 @@
 // The airlight tables (Sun et al. 2005): ln G̃_g(u, w) for a viewer and a point light inside
 // a medium, for one Henyey–Greenstein g. One class serves both kinds, parameterised by the
-// phase: the isotropic F table (airlight_F: the media of g = 0, one table) and the
-// anisotropic F_g tables (airlight_Fg: one table per distinct g ≠ 0, per_phase()). Its
+// phase's runtime class: the isotropic F table (airlight_F: the media of g = 0, one table,
+// AirlightTable) and the anisotropic F_g tables (airlight_Fg: one table per distinct g ≠ 0,
+// per_phase(), AirlightHgTable). Its
 // generator: generate_airlight.cpp (kernels/airlight_F.cl); its runtimes:
 // tables/src/airlight.cpp (AirlightTable) and tables/src/airlight_hg.cpp (AirlightHgTable).
 #include <algorithm>
@@ -11,7 +12,7 @@
 
 #include "generate_airlight.hpp"
 #include "kinds/derivation.hpp"
-#include "measure_util.hpp"
+#include "kinds/planned_kind.hpp"
 #include "plan.hpp"
 #include "scene_queries.hpp"
 #include "text_format.hpp"
@@ -19,9 +20,6 @@
 #include "scatterlut/airlight_hg.hpp"
 
 namespace scatterlut {
-
-const RuntimeKind &airlight_runtime_kind();    // kinds/airlight_runtime.cpp
-const RuntimeKind &airlight_hg_runtime_kind(); // kinds/airlight_hg_runtime.cpp
 
 namespace {
 
@@ -38,16 +36,6 @@ struct Demand {
     double u_max = 0;
     double relative_error = HUGE_VAL;
 };
-
-const AirlightPlan &plan_of(const std::any &plan) { return std::any_cast<const AirlightPlan &>(plan); }
-AirlightPlan &plan_of(std::any &plan) { return std::any_cast<AirlightPlan &>(plan); }
-
-// The queries of a table: the query and the g it is for.
-struct PhaseQueries {
-    std::vector<AirlightQuery> queries;
-    double phase_g = 0;
-};
-const PhaseQueries &queries_of(const RadianceQueries &q) { return std::any_cast<const PhaseQueries &>(q.queries); }
 
 // The scene's media of asymmetry g the viewer is inside, one grey copy per colour channel
 // (so that every channel's σ is queried); lights that name a coloured medium light its copies.
@@ -72,36 +60,33 @@ Scene media_of_phase(const Scene &scene, double g) {
     return only;
 }
 
-// The runtime class of a table of either kind (Runtime: AirlightTable or AirlightHgTable).
+// Runtime: AirlightHgTable for the kind of the media with g ≠ 0 (airlight_Fg), AirlightTable
+// for those with g = 0 (airlight_F).
 template <class Runtime>
-std::function<double(size_t)> radiance_of(const Table &table, const PhaseQueries *q) {
-    auto air = std::make_shared<Runtime>(table);
-    return [air, q](size_t k) { return air->radiance(q->queries[k]); };
-}
-template <class Runtime>
-std::function<double()> lookups_of(const Table &table, const std::vector<double> *params, size_t count) {
-    auto air = std::make_shared<Runtime>(table);
-    return [air, params, count] {
-        const std::vector<double> &pp = *params;
-        double sum = 0;
-        for (size_t i = 0; i < count; ++i) sum += air->scaled_tail(pp[2 * i], pp[2 * i + 1]);
-        return sum;
-    };
-}
+class AirlightKind final : public PlannedKind<AirlightKind<Runtime>, AirlightPlan, Runtime, AirlightQuery> {
+    using PlannedKind<AirlightKind<Runtime>, AirlightPlan, Runtime, AirlightQuery>::kAnisotropic;
 
-class AirlightKind final : public TableKind {
 public:
-    // anisotropic: the kind of the media with g ≠ 0 (airlight_Fg), else of those with g = 0.
-    explicit AirlightKind(bool anisotropic) : anisotropic_(anisotropic) {}
-
-    const RuntimeKind &runtime() const override {
-        return anisotropic_ ? airlight_hg_runtime_kind() : airlight_runtime_kind();
+    // For PlannedKind: the generator (generate_airlight.hpp) and the runtime's answers.
+    static constexpr auto layout_of = make_airlight_table_layout;
+    static constexpr auto integrate_nodes = integrate_airlight_ln_gs;
+    static constexpr auto generate_table = generate_airlight_table;
+    static constexpr auto measurement_nodes = airlight_measurement_nodes; // the corners, then random nodes
+    static double measure_integration(const Runtime &air, const std::vector<NodeIndex> &nodes,
+                                      IntegrationReference reference) {
+        return measure_airlight_integration(air.table(), nodes, reference);
     }
-    bool per_phase() const override { return anisotropic_; }
+    static SamplingStats measure_sampling(const Runtime &air, int points, uint64_t seed) {
+        return measure_airlight_sampling(air.table(), [&air](double u, double w) { return air.scaled_tail(u, w); },
+                                         points, seed);
+    }
+    static double lookup(const Runtime &air, const double *uw, size_t) { return air.scaled_tail(uw[0], uw[1]); }
+
+    const RuntimeKind &runtime() const override { return airlight_runtime_kind(kAnisotropic); }
 
     void add_demand(const Scene &, const SceneMedium &m, const SceneLight &l, std::any &state,
                     PlannedTable &t) const override {
-        if (!m.viewer_inside || m.isotropic() == anisotropic_) return;
+        if (!m.viewer_inside || m.isotropic() == kAnisotropic) return;
         if (!state.has_value()) state = Demand{};
         Demand &d = std::any_cast<Demand &>(state);
         d.phase_g = m.phase_g;
@@ -110,7 +95,7 @@ public:
         d.relative_error = std::min(d.relative_error, m.relative_error);
         t.requested_by.push_back(
             {m.name, l.name,
-             "viewer inside, " + (anisotropic_ ? "phase_g = " + fmt("%g", m.phase_g) + ", " : std::string()) +
+             "viewer inside, " + (kAnisotropic ? "phase_g = " + fmt("%g", m.phase_g) + ", " : std::string()) +
                  "light at D <= " + fmt("%g", d_hi) + " m: u up to sigma_t*D_max = " + fmt("%.4g", sigma_t * d_hi) +
                  (m.coloured ? " (the densest channel; the others lie below)" : "")});
     }
@@ -119,10 +104,10 @@ public:
                      PlannedTable &t) const override {
         const Demand &d = std::any_cast<const Demand &>(state);
         const double g = d.phase_g;
-        const std::string at_g = anisotropic_ ? " at g = " + fmt("%g", g) : "";
+        const std::string at_g = kAnisotropic ? " at g = " + fmt("%g", g) : "";
         AirlightPlan a;
         a.phase_g = g;
-        if (anisotropic_) {
+        if (kAnisotropic) {
             t.phase_g = g;
             t.stem = airlight_fg_stem(g);
         }
@@ -153,100 +138,53 @@ public:
         return "a third of the radiance error: the airlight is a difference of two samples";
     }
 
-    std::vector<int> counts(const std::any &plan) const override { return {plan_of(plan).n_u, plan_of(plan).n_w}; }
+    std::vector<int> counts(const std::any &plan) const override {
+        const AirlightPlan &p = this->plan_of(plan);
+        return {p.n_u, p.n_w};
+    }
     void set_counts(std::any &plan, const std::vector<int> &c) const override {
-        plan_of(plan).n_u = c[0];
-        plan_of(plan).n_w = c[1];
-    }
-    void set_storage(std::any &plan, Storage storage) const override { plan_of(plan).storage = storage; }
-    double integration_tolerance(const std::any &plan) const override { return plan_of(plan).integration_tolerance; }
-    double interpolation_ln_floor() const override { return -HUGE_VAL; }
-
-    Table layout(const std::any &plan, double tolerance) const override {
-        AirlightPlan p = plan_of(plan);
-        p.integration_tolerance = tolerance;
-        return make_airlight_table_layout(p);
-    }
-    std::vector<double> integrate(Device &device, const Table &layout, double tolerance) const override {
-        return integrate_airlight_ln_gs(device, layout, tolerance);
-    }
-    Table generate(Device &device, const std::any &plan, const Provenance &provenance,
-                   const std::function<void(double)> &progress) const override {
-        return generate_airlight_table(device, plan_of(plan), provenance, progress);
-    }
-
-    std::vector<NodeIndex> generator_nodes(const Table &table, int nodes, uint64_t seed) const override {
-        return airlight_measurement_nodes(table, nodes, seed);
-    }
-    double integration_error(const RuntimeSampler &sampler, const std::vector<NodeIndex> &nodes,
-                             IntegrationReference reference) const override {
-        return measure_airlight_integration(sampler.table(), nodes, reference);
-    }
-    SamplingStats sampling_error(const RuntimeSampler &sampler, int points, uint64_t seed) const override {
-        if (anisotropic_) {
-            const AirlightHgTable &air = dynamic_cast<const SamplerOf<AirlightHgTable> &>(sampler).runtime;
-            return measure_airlight_sampling(air.table(), [&air](double u, double w) { return air.scaled_tail(u, w); },
-                                             points, seed);
-        }
-        const AirlightTable &air = dynamic_cast<const SamplerOf<AirlightTable> &>(sampler).runtime;
-        return measure_airlight_sampling(air.table(), [&air](double u, double w) { return air.scaled_tail(u, w); },
-                                         points, seed);
+        AirlightPlan &p = this->plan_of(plan);
+        p.n_u = c[0];
+        p.n_w = c[1];
     }
 
     RadianceQueries radiance_queries(const Scene &scene, const std::any &plan, size_t count,
                                      uint64_t seed) const override {
-        const double g = plan_of(plan).phase_g;
-        std::vector<AirlightQuery> all = sample_airlight_queries(media_of_phase(scene, g), count, seed);
-        std::vector<double> exact(all.size());
-        parallel_for(static_cast<int>(all.size()), [&](int i) {
-            exact[static_cast<size_t>(i)] = airlight_radiance_exact(all[static_cast<size_t>(i)], g);
-        });
-        PhaseQueries kept;
-        kept.phase_g = g;
-        RadianceQueries s;
-        for (size_t i = 0; i < all.size(); ++i)
-            if (std::isfinite(exact[i]) && exact[i] > 0) {
-                kept.queries.push_back(all[i]);
-                s.exact.push_back(exact[i]);
-            }
-        s.queries = std::move(kept);
-        s.description = describe_airlight_queries() + (anisotropic_ ? ", phase_g = " + fmt("%g", g) : std::string()) +
-                        ", every colour channel; rays through the light (infinite radiance) left out";
-        return s;
+        const double g = this->plan_of(plan).phase_g;
+        return this->served_queries(
+            sample_airlight_queries(media_of_phase(scene, g), count, seed),
+            [g](const AirlightQuery &q) { return airlight_radiance_exact(q, g); },
+            [](const AirlightQuery &) { return true; }, // every query: the table spans the scene's u
+            describe_airlight_queries() + (kAnisotropic ? ", phase_g = " + fmt("%g", g) : std::string()) +
+                ", every colour channel; rays through the light (infinite radiance) left out");
     }
 
     std::vector<RuntimeMethod> runtime_methods(const Table &table, const RadianceQueries &qs) const override {
-        const PhaseQueries *q = &queries_of(qs);
+        const std::vector<AirlightQuery> *q = &this->queries_of(qs);
+        const double g = airlight_table_phase_g(table);
         std::vector<RuntimeMethod> m = {
             {"exact", "quadrature per call (airlight_radiance_exact with phase_g)", true,
-             [q](size_t k) { return airlight_radiance_exact(q->queries[k], q->phase_g); }},
+             [q, g](size_t k) { return airlight_radiance_exact((*q)[k], g); }},
             {"table", std::string("two samples of the planned table (") + runtime_class() + "::radiance)", false,
-             table_radiance(table, qs)}};
-        if (anisotropic_) { // the closed forms with the phase
+             this->table_radiance(table, qs)}};
+        if (kAnisotropic) { // the closed forms with the phase
             m.push_back({"thin", "no extinction along either leg, with the phase (airlight_hg_radiance_thin)", false,
-                         [q](size_t k) { return airlight_hg_radiance_thin(q->queries[k], q->phase_g); }});
+                         [q, g](size_t k) { return airlight_hg_radiance_thin((*q)[k], g); }});
             m.push_back({"distant",
                          "distant light, scattering angle gamma along the ray (airlight_hg_radiance_distant)", false,
-                         [q](size_t k) { return airlight_hg_radiance_distant(q->queries[k], q->phase_g); }});
+                         [q, g](size_t k) { return airlight_hg_radiance_distant((*q)[k], g); }});
         } else { // the isotropic closed forms engines use
             m.push_back({"no_extinction", "closed form without extinction, Macklin 2010 (airlight_radiance_no_extinction)",
-                         false, [q](size_t k) { return airlight_radiance_no_extinction(q->queries[k]); }});
+                         false, [q](size_t k) { return airlight_radiance_no_extinction((*q)[k]); }});
             m.push_back({"attenuated",
                          "the same times e^(-sigma_t D), an engine fudge (airlight_radiance_no_extinction_attenuated)",
-                         false, [q](size_t k) { return airlight_radiance_no_extinction_attenuated(q->queries[k]); }});
+                         false, [q](size_t k) { return airlight_radiance_no_extinction_attenuated((*q)[k]); }});
         }
         return m;
     }
-    std::function<double(size_t)> table_radiance(const Table &table, const RadianceQueries &qs) const override {
-        return anisotropic_ ? radiance_of<AirlightHgTable>(table, &queries_of(qs))
-                            : radiance_of<AirlightTable>(table, &queries_of(qs));
-    }
-    std::function<double()> lookup_loop(const Table &table, const std::vector<double> &p, size_t count) const override {
-        return anisotropic_ ? lookups_of<AirlightHgTable>(table, &p, count) : lookups_of<AirlightTable>(table, &p, count);
-    }
-    const char *runtime_class() const override { return anisotropic_ ? "AirlightHgTable" : "AirlightTable"; }
+    const char *runtime_class() const override { return kAnisotropic ? "AirlightHgTable" : "AirlightTable"; }
     std::string methods_note() const override {
-        if (anisotropic_)
+        if (kAnisotropic)
             return " With a Henyey-Greenstein phase the closed forms are approximations: thin drops the extinction "
                    "along both legs (exact as sigma_t -> 0, an overestimate otherwise); distant keeps the scattering "
                    "angle at gamma along the ray and 1/D^2 (Gath 2008 eq. 5 with the phase), fair for a ray much "
@@ -256,21 +194,15 @@ public:
                "the table are the closed forms engines use (Macklin 2010): no_extinction drops the attenuation along "
                "both legs of the light path, attenuated applies e^(-sigma_t D) to the whole ray.";
     }
-
-private:
-    bool anisotropic_;
 };
 
 } // namespace
 
-const TableKind &airlight_table_kind() {
-    static const AirlightKind kind(false);
-    return kind;
-}
-
-const TableKind &airlight_hg_table_kind() {
-    static const AirlightKind kind(true);
-    return kind;
+const std::vector<const TableKind *> &airlight_table_kinds() {
+    static const AirlightKind<AirlightTable> isotropic;
+    static const AirlightKind<AirlightHgTable> anisotropic;
+    static const std::vector<const TableKind *> kinds = {&isotropic, &anisotropic};
+    return kinds;
 }
 
 } // namespace scatterlut

@@ -1,6 +1,8 @@
-// The airlight F table's runtime facet (kinds/runtime_kind.hpp): its sampler, AirlightTable
-// (tables/src/airlight.cpp), and the eval quantities F and airlight. Its descriptor:
-// kinds/airlight_kind.cpp.
+// The airlight tables' runtime facets (kinds/runtime_kind.hpp). airlight_F: its sampler,
+// AirlightTable (tables/src/airlight.cpp), and the eval quantities F and airlight.
+// airlight_Fg: its sampler, AirlightHgTable (tables/src/airlight_hg.cpp), and no eval quantity
+// of its own: eval answers "airlight" queries with "phase_g" ≠ 0 from a loaded table of that g
+// (eval.cpp). Their descriptor: kinds/airlight_kind.cpp.
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -9,6 +11,7 @@
 #include "eval.hpp"
 #include "kinds/runtime_kind.hpp"
 #include "scatterlut/airlight.hpp"
+#include "scatterlut/airlight_hg.hpp"
 
 extern "C" {
 #include "slut_airlight.h"
@@ -17,47 +20,46 @@ extern "C" {
 namespace scatterlut {
 namespace {
 
-class AirlightRuntime final : public RuntimeKind {
-public:
-    const char *name() const override { return kKindAirlightF; }
-    std::shared_ptr<const RuntimeSampler> make_sampler(Table table) const override {
-        return std::make_shared<SamplerOf<AirlightTable>>(std::move(table));
+// The loaded airlight_F table, or nullptr.
+const AirlightTable *airlight_table(const EvalTables &tables) {
+    return first_runtime<AirlightTable>(tables.samplers, [](const AirlightTable &) { return true; });
+}
+
+// "F": F(u, v) and its tail by quadrature and from the table.
+void answer_F(const nlohmann::json &q, nlohmann::json &out, const EvalTables &tables) {
+    const double u = eval_number_field(q, "u"), v = eval_number_field(q, "v");
+    if (!(u >= 0.0) || !std::isfinite(u)) throw std::invalid_argument("u must be finite and >= 0");
+    if (!(v >= 0.0) || !(v <= 1.5707963267948968)) throw std::invalid_argument("v must lie in [0, pi/2]");
+    eval_put(out, "exact", slut_F_quadrature(u, v));
+    eval_put(out, "tail", slut_tail_quadrature(u, v));
+    if (const AirlightTable *table = airlight_table(tables)) {
+        eval_put(out, "table", table->F(u, v));
+        eval_put(out, "table_tail", table->tail(u, v));
+    } else {
+        out["table"] = nullptr;
+        out["table_tail"] = nullptr;
     }
-    std::vector<std::string> eval_quantities() const override { return {"F", "airlight"}; }
-    void answer_eval(const std::string &quantity, const nlohmann::json &q, nlohmann::json &out,
-                     const EvalTables &tables) const override {
-        const AirlightTable *table =
-            first_runtime<AirlightTable>(tables.samplers, [](const AirlightTable &) { return true; });
-        if (quantity == "F") {
-            const double u = eval_number_field(q, "u"), v = eval_number_field(q, "v");
-            if (!(u >= 0.0) || !std::isfinite(u)) throw std::invalid_argument("u must be finite and >= 0");
-            if (!(v >= 0.0) || !(v <= 1.5707963267948968)) throw std::invalid_argument("v must lie in [0, pi/2]");
-            eval_put(out, "exact", slut_F_quadrature(u, v));
-            eval_put(out, "tail", slut_tail_quadrature(u, v));
-            if (!table) {
-                out["table"] = nullptr;
-                out["table_tail"] = nullptr;
-            } else {
-                eval_put(out, "table", table->F(u, v));
-                eval_put(out, "table_tail", table->tail(u, v));
-            }
-            return;
-        }
-        const AirlightQuery a = eval_airlight_query(q); // quantity "airlight"
-        const double exact = airlight_radiance_exact(a); // validates the query
-        eval_put(out, "exact", exact);
-        const bool through_light = a.gamma_rad == 0.0 && a.length_m >= a.distance_m;
-        if (through_light) out["note"] = "diverges: the view ray passes through the light";
-        if (!table) out["table"] = nullptr;
-        else eval_put(out, "table", table->radiance(a));
-    }
-};
+}
+
+// "airlight": the radiance of a view ray, exact and from the table.
+void answer_airlight(const nlohmann::json &q, nlohmann::json &out, const EvalTables &tables) {
+    const AirlightQuery a = eval_airlight_query(q);
+    const double exact = airlight_radiance_exact(a); // validates the query
+    eval_put(out, "exact", exact);
+    const bool through_light = a.gamma_rad == 0.0 && a.length_m >= a.distance_m;
+    if (through_light) out["note"] = "diverges: the view ray passes through the light";
+    if (const AirlightTable *table = airlight_table(tables)) eval_put(out, "table", table->radiance(a));
+    else out["table"] = nullptr;
+}
 
 } // namespace
 
-const RuntimeKind &airlight_runtime_kind() {
-    static const AirlightRuntime kind;
-    return kind;
+const RuntimeKind &airlight_runtime_kind(bool anisotropic) {
+    static const RuntimeKindOf<AirlightTable> isotropic_kind(kKindAirlightF,
+                                                             {{"F", answer_F}, {"airlight", answer_airlight}});
+    static const RuntimeKindOf<AirlightHgTable> anisotropic_kind(kKindAirlightFg);
+    if (anisotropic) return anisotropic_kind;
+    return isotropic_kind;
 }
 
 } // namespace scatterlut

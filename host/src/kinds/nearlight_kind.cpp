@@ -1,8 +1,8 @@
 // The near-light E tables (Gath 2008 §4.2): ln E(T, g, r) for thick media (kind E3, S = ∞)
 // and ln E/B(T, g, r, S) for slabs of finite optical thickness (kind E4), and the same with a
 // Henyey–Greenstein phase (kinds E3_hg / E4_hg: ln(E_g/ψ_max), the medium's phase_g recorded
-// as "phase.g"): one class, parameterized by slab / thick and isotropic / anisotropic,
-// registered four times. Their generator: generate_nearlight.cpp; their runtime:
+// as "phase.g"): one class template, parameterized by its runtime class (NearLightTable or
+// NearLightHgTable) and slab / thick, registered four times. Their generator: generate_nearlight.cpp; their runtime:
 // tables/src/nearlight.cpp and tables/src/nearlight_hg.cpp.
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,7 @@
 
 #include "generate_nearlight.hpp"
 #include "kinds/derivation.hpp"
-#include "measure_util.hpp"
+#include "kinds/planned_kind.hpp"
 #include "plan.hpp"
 #include "scene_queries.hpp"
 #include "text_format.hpp"
@@ -24,12 +24,6 @@ extern "C" {
 }
 
 namespace scatterlut {
-
-// kinds/nearlight_runtime.cpp
-const RuntimeKind &near_light_thick_runtime_kind();
-const RuntimeKind &near_light_slab_runtime_kind();
-const RuntimeKind &near_light_thick_hg_runtime_kind();
-const RuntimeKind &near_light_slab_hg_runtime_kind();
 
 namespace {
 
@@ -44,27 +38,37 @@ struct Demand {
     double phase_g = 0.0; // anisotropic kinds: the g of the table (its media's)
 };
 
-const NearLightPlan &plan_of(const std::any &plan) { return std::any_cast<const NearLightPlan &>(plan); }
-NearLightPlan &plan_of(std::any &plan) { return std::any_cast<NearLightPlan &>(plan); }
-const std::vector<NearLightQuery> &queries_of(const RadianceQueries &q) {
-    return std::any_cast<const std::vector<NearLightQuery> &>(q.queries);
-}
+// Runtime: NearLightHgTable for the kinds of the media with g ≠ 0 (E3_hg, E4_hg),
+// NearLightTable for the isotropic ones (E3, E4).
+template <class Runtime>
+class NearLightKind final : public PlannedKind<NearLightKind<Runtime>, NearLightPlan, Runtime, NearLightQuery> {
+    using PlannedKind<NearLightKind<Runtime>, NearLightPlan, Runtime, NearLightQuery>::kAnisotropic;
 
-class NearLightKind final : public TableKind {
 public:
-    NearLightKind(bool finite_thickness, bool anisotropic) : finite_(finite_thickness), anisotropic_(anisotropic) {}
-
-    const RuntimeKind &runtime() const override {
-        if (anisotropic_) return finite_ ? near_light_slab_hg_runtime_kind() : near_light_thick_hg_runtime_kind();
-        return finite_ ? near_light_slab_runtime_kind() : near_light_thick_runtime_kind();
+    // For PlannedKind: the generator (generate_nearlight.hpp) and the runtime's answers.
+    static constexpr auto layout_of = make_nearlight_table_layout;
+    static constexpr auto generate_table = generate_nearlight_table;
+    static constexpr double (*measure_integration)(const Runtime &, const std::vector<NodeIndex> &,
+                                                   IntegrationReference) = measure_nearlight_integration;
+    static constexpr SamplingStats (*measure_sampling)(const Runtime &, int, uint64_t) = measure_nearlight_sampling;
+    static std::vector<double> integrate_nodes(Device &device, const Table &layout, double tolerance) {
+        return integrate_nearlight_ln_E(device, layout, {}, tolerance);
     }
+    // (T, g, r) and, in a 4-D table, S.
+    static double lookup(const Runtime &near, const double *p, size_t axes) {
+        return near.E(p[0], p[1], p[2], axes == 4 ? p[3] : HUGE_VAL);
+    }
+
+    explicit NearLightKind(bool finite_thickness) : finite_(finite_thickness) {}
+
+    const RuntimeKind &runtime() const override { return near_light_runtime_kind(finite_, kAnisotropic); }
 
     void add_demand(const Scene &scene, const SceneMedium &m, const SceneLight &l, std::any &state,
                     PlannedTable &t) const override {
         if (m.viewer_inside || !(finite_ ? m.has_thickness : m.thick)) return;
         // Isotropic media: the isotropic kinds (today's tables); anisotropic ones: the _hg kind,
         // which the planner asks with the media of one g at a time (per_phase()).
-        if (anisotropic_ != !m.isotropic()) return;
+        if (kAnisotropic != !m.isotropic()) return;
         if (!state.has_value()) state = Demand{};
         Demand &d = std::any_cast<Demand &>(state);
         d.phase_g = m.phase_g;
@@ -113,7 +117,7 @@ public:
         p.n_r = half_count(p.n_r);
         p.n_S = half_count(p.n_S);
         p.phase_g = d.phase_g;
-        if (anisotropic_) {
+        if (kAnisotropic) {
             t.phase_g = d.phase_g;
             t.stem = near_light_hg_file_stem(finite_, d.phase_g);
             p.g_max = near_light_hg_g_max(p.phase_g, finite_);
@@ -128,88 +132,47 @@ public:
         t.plan = p;
     }
 
-    bool per_phase() const override { return anisotropic_; }
-
     const char *target_reason() const override { return "the radiance error: L = sigma_s p I0 sigma_t H E, H exact"; }
 
     std::vector<int> counts(const std::any &plan) const override {
-        const NearLightPlan &p = plan_of(plan);
+        const NearLightPlan &p = this->plan_of(plan);
         std::vector<int> c = {p.n_T, p.n_g, p.n_r};
         if (p.finite_thickness) c.push_back(p.n_S);
         return c;
     }
     void set_counts(std::any &plan, const std::vector<int> &c) const override {
-        NearLightPlan &p = plan_of(plan);
+        NearLightPlan &p = this->plan_of(plan);
         p.n_T = c[0];
         p.n_g = c[1];
         p.n_r = c[2];
         if (p.finite_thickness) p.n_S = c[3];
     }
-    void set_storage(std::any &plan, Storage storage) const override { plan_of(plan).storage = storage; }
-    double integration_tolerance(const std::any &plan) const override { return plan_of(plan).integration_tolerance; }
     double interpolation_ln_floor() const override { return std::log(kEFloor); }
-
-    Table layout(const std::any &plan, double tolerance) const override {
-        NearLightPlan p = plan_of(plan);
-        p.integration_tolerance = tolerance;
-        return make_nearlight_table_layout(p);
-    }
-    std::vector<double> integrate(Device &device, const Table &layout, double tolerance) const override {
-        return integrate_nearlight_ln_E(device, layout, {}, tolerance);
-    }
-    Table generate(Device &device, const std::any &plan, const Provenance &provenance,
-                   const std::function<void(double)> &progress) const override {
-        return generate_nearlight_table(device, plan_of(plan), provenance, progress);
-    }
-
-    std::vector<NodeIndex> generator_nodes(const Table &table, int nodes, uint64_t seed) const override {
-        return nearlight_measurement_nodes(table, nodes, seed);
-    }
-    double integration_error(const RuntimeSampler &sampler, const std::vector<NodeIndex> &nodes,
-                             IntegrationReference reference) const override {
-        if (anisotropic_)
-            return measure_nearlight_integration(dynamic_cast<const SamplerOf<NearLightHgTable> &>(sampler).runtime,
-                                                 nodes, reference);
-        return measure_nearlight_integration(dynamic_cast<const SamplerOf<NearLightTable> &>(sampler).runtime, nodes, reference);
-    }
-    SamplingStats sampling_error(const RuntimeSampler &sampler, int points, uint64_t seed) const override {
-        if (anisotropic_)
-            return measure_nearlight_sampling(dynamic_cast<const SamplerOf<NearLightHgTable> &>(sampler).runtime,
-                                              points, seed);
-        return measure_nearlight_sampling(dynamic_cast<const SamplerOf<NearLightTable> &>(sampler).runtime, points, seed);
-    }
 
     RadianceQueries radiance_queries(const Scene &scene, const std::any &plan, size_t count,
                                      uint64_t seed) const override {
-        const double phase_g = plan_of(plan).phase_g;
-        std::vector<NearLightQuery> all = sample_near_light_queries(scene, finite_, count, seed), kept;
-        std::vector<double> exact(all.size()), E(all.size());
-        parallel_for(static_cast<int>(all.size()), [&](int i) {
-            const NearLightQuery &q = all[static_cast<size_t>(i)];
-            const NearLightParams p = near_light_params(q);
-            E[static_cast<size_t>(i)] = p.light_below ? 0.0 : slut_nl_E(p.T, p.g, p.r, p.S); // the attenuation
-            exact[static_cast<size_t>(i)] =
-                anisotropic_ ? near_light_radiance_exact(q, phase_g) : near_light_radiance_exact(q);
-        });
-        RadianceQueries s;
-        for (size_t i = 0; i < all.size(); ++i)
-            if (E[i] >= kEFloor && std::isfinite(exact[i]) && exact[i] > 0) {
-                kept.push_back(all[i]);
-                s.exact.push_back(exact[i]);
-            }
-        s.queries = std::move(kept);
-        s.description = describe_near_light_queries(finite_) + "; queries with E < 1e-6 left out";
-        return s;
+        const double phase_g = this->plan_of(plan).phase_g;
+        return this->served_queries(
+            sample_near_light_queries(scene, finite_, count, seed),
+            [phase_g](const NearLightQuery &q) {
+                if constexpr (kAnisotropic) return near_light_radiance_exact(q, phase_g);
+                else return near_light_radiance_exact(q);
+            },
+            [](const NearLightQuery &q) { // the attenuation E at least the floor
+                const NearLightParams p = near_light_params(q);
+                return !p.light_below && slut_nl_E(p.T, p.g, p.r, p.S) >= kEFloor;
+            },
+            describe_near_light_queries(finite_) + "; queries with E < 1e-6 left out");
     }
 
     std::vector<RuntimeMethod> runtime_methods(const Table &table, const RadianceQueries &qs) const override {
-        const std::vector<NearLightQuery> *q = &queries_of(qs);
-        if (anisotropic_) {
+        const std::vector<NearLightQuery> *q = &this->queries_of(qs);
+        if constexpr (kAnisotropic) {
             const double g = NearLightHgTable(table).phase_g();
             return {{"exact", "quadrature per call with the phase (near_light_radiance_exact(q, g))", true,
                      [q, g](size_t k) { return near_light_radiance_exact((*q)[k], g); }},
                     {"table", "one sample of the planned E_g table (NearLightHgTable::radiance)", false,
-                     table_radiance(table, qs)},
+                     this->table_radiance(table, qs)},
                     {"thin", "thin-medium form times the path's mean phase (near_light_radiance_thin(q, g))", false,
                      [q, g](size_t k) { return near_light_radiance_thin((*q)[k], g); }},
                     {"distant", "distant-light limit, Gath 2008 eq. 5, times the phase at the entry point "
@@ -218,74 +181,27 @@ public:
         }
         return {{"exact", "quadrature per call (near_light_radiance_exact)", true,
                  [q](size_t k) { return near_light_radiance_exact((*q)[k]); }},
-                {"table", "one sample of the planned E table (NearLightTable::radiance)", false, table_radiance(table, qs)},
+                {"table", "one sample of the planned E table (NearLightTable::radiance)", false,
+                 this->table_radiance(table, qs)},
                 {"thin", "thin-medium closed form, Gath 2008 §4.2 (near_light_radiance_thin)", false,
                  [q](size_t k) { return near_light_radiance_thin((*q)[k]); }},
                 {"distant", "distant-light limit, Gath 2008 eq. 5 (near_light_radiance_distant)", false,
                  [q](size_t k) { return near_light_radiance_distant((*q)[k]); }}};
     }
-    std::function<double(size_t)> table_radiance(const Table &table, const RadianceQueries &qs) const override {
-        if (anisotropic_) {
-            auto near = std::make_shared<NearLightHgTable>(table);
-            const std::vector<NearLightQuery> *q = &queries_of(qs);
-            return [near, q](size_t k) { return near->radiance((*q)[k]); };
-        }
-        auto near = std::make_shared<NearLightTable>(table);
-        const std::vector<NearLightQuery> *q = &queries_of(qs);
-        return [near, q](size_t k) { return near->radiance((*q)[k]); };
-    }
-    std::function<double()> lookup_loop(const Table &table, const std::vector<double> &p, size_t count) const override {
-        if (anisotropic_) {
-            auto near = std::make_shared<NearLightHgTable>(table);
-            const std::vector<double> *params = &p;
-            const size_t n = table.axes.size();
-            return [near, params, count, n] {
-                const std::vector<double> &pp = *params;
-                double sum = 0;
-                for (size_t i = 0; i < count; ++i)
-                    sum += near->E(pp[n * i], pp[n * i + 1], pp[n * i + 2], n == 4 ? pp[n * i + 3] : HUGE_VAL);
-                return sum;
-            };
-        }
-        auto near = std::make_shared<NearLightTable>(table);
-        const std::vector<double> *params = &p;
-        const size_t n = table.axes.size();
-        return [near, params, count, n] {
-            const std::vector<double> &pp = *params;
-            const double inf = HUGE_VAL;
-            double sum = 0;
-            for (size_t i = 0; i < count; ++i)
-                sum += near->E(pp[n * i], pp[n * i + 1], pp[n * i + 2], n == 4 ? pp[n * i + 3] : inf);
-            return sum;
-        };
-    }
-    const char *runtime_class() const override { return anisotropic_ ? "NearLightHgTable" : "NearLightTable"; }
+    const char *runtime_class() const override { return kAnisotropic ? "NearLightHgTable" : "NearLightTable"; }
     std::string methods_note() const override { return ""; }
 
 private:
-    bool finite_, anisotropic_;
+    bool finite_;
 };
 
 } // namespace
 
-const TableKind &near_light_thick_table_kind() {
-    static const NearLightKind kind(false, false);
-    return kind;
-}
-
-const TableKind &near_light_slab_table_kind() {
-    static const NearLightKind kind(true, false);
-    return kind;
-}
-
-const TableKind &near_light_thick_hg_table_kind() {
-    static const NearLightKind kind(false, true);
-    return kind;
-}
-
-const TableKind &near_light_slab_hg_table_kind() {
-    static const NearLightKind kind(true, true);
-    return kind;
+const std::vector<const TableKind *> &near_light_table_kinds() {
+    static const NearLightKind<NearLightTable> thick(false), slab(true);
+    static const NearLightKind<NearLightHgTable> thick_hg(false), slab_hg(true);
+    static const std::vector<const TableKind *> kinds = {&thick, &slab, &thick_hg, &slab_hg};
+    return kinds;
 }
 
 } // namespace scatterlut

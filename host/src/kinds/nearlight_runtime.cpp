@@ -2,8 +2,7 @@
 // NearLightTable (tables/src/nearlight.cpp), and the eval quantities N and near_light; and the
 // anisotropic kinds' (E3_hg, E4_hg): their sampler NearLightHgTable (tables/src/nearlight_hg.cpp)
 // and no eval quantity of their own (eval.cpp's answer_near_light_phase reads them for
-// near_light queries with a phase_g). One class, registered four times. Their descriptor:
-// kinds/nearlight_kind.cpp.
+// near_light queries with a phase_g). Their descriptor: kinds/nearlight_kind.cpp.
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -32,76 +31,46 @@ bool any_near_light(const EvalTables &tables) {
     return first_runtime<NearLightTable>(tables.samplers, [](const NearLightTable &) { return true; }) != nullptr;
 }
 
-class NearLightRuntime final : public RuntimeKind {
-public:
-    NearLightRuntime(bool finite_thickness, bool anisotropic) : finite_(finite_thickness), anisotropic_(anisotropic) {}
-    const char *name() const override {
-        if (anisotropic_) return finite_ ? kKindNearLightE4Hg : kKindNearLightE3Hg;
-        return finite_ ? kKindNearLightE4 : kKindNearLightE3;
-    }
-    std::shared_ptr<const RuntimeSampler> make_sampler(Table table) const override {
-        if (anisotropic_) return std::make_shared<SamplerOf<NearLightHgTable>>(std::move(table));
-        return std::make_shared<SamplerOf<NearLightTable>>(std::move(table));
-    }
-    std::vector<std::string> eval_quantities() const override {
-        if (anisotropic_) return {};
-        return {"N", "near_light"};
-    }
-    void answer_eval(const std::string &quantity, const nlohmann::json &q, nlohmann::json &out,
-                     const EvalTables &tables) const override {
-        if (anisotropic_) return; // no quantity of its own (eval_quantities)
-        if (quantity == "N") {
-            const double T = eval_number_field(q, "T"), g = eval_number_field(q, "g"), r = eval_number_field(q, "r"),
-                         S = eval_number_field(q, "S");
-            if (!(T > 0.0) || !std::isfinite(T)) throw std::invalid_argument("T must be finite and > 0");
-            if (!(g >= -1.0 && g <= 1.0)) throw std::invalid_argument("g must lie in [-1, 1]");
-            if (!(r >= 0.0)) throw std::invalid_argument("r must be >= 0");
-            if (!(S >= 0.0)) throw std::invalid_argument("S must be >= 0 (or \"inf\")");
-            const double H = slut_nl_H(T, g, S), E = slut_nl_E(T, g, r, S);
-            eval_put(out, "exact", (H > 0.0 && std::isfinite(H)) ? E * H : H);
-            eval_put(out, "E", E);
-            eval_put(out, "H", H);
-            const NearLightTable *t = covering(tables, T, g, r, S);
-            if (t) eval_put(out, "table", t->E(T, g, r, S) * H);
-            else out["table"] = nullptr;
-            eval_put(out, "approx", slut_nl_N_thin(T, g, r, S));
-            return;
-        }
-        const NearLightQuery n = eval_near_light_query(q); // quantity "near_light"
-        eval_put(out, "exact", near_light_radiance_exact(n)); // validates the query
-        const NearLightParams p = near_light_params(n);
-        const NearLightTable *t = p.light_below ? nullptr : covering(tables, p.T, p.g, p.r, p.S);
-        if (t) eval_put(out, "table", t->radiance(n));
-        else if (p.light_below && any_near_light(tables)) out["table"] = 0.0;
-        else out["table"] = nullptr;
-        eval_put(out, "approx", near_light_radiance_thin(n));
-        eval_put(out, "distant", near_light_radiance_distant(n));
-    }
+// "N": N = E·H at (T, g, r, S), exact and from the table covering it.
+void answer_N(const nlohmann::json &q, nlohmann::json &out, const EvalTables &tables) {
+    const double T = eval_number_field(q, "T"), g = eval_number_field(q, "g"), r = eval_number_field(q, "r"),
+                 S = eval_number_field(q, "S");
+    if (!(T > 0.0) || !std::isfinite(T)) throw std::invalid_argument("T must be finite and > 0");
+    if (!(g >= -1.0 && g <= 1.0)) throw std::invalid_argument("g must lie in [-1, 1]");
+    if (!(r >= 0.0)) throw std::invalid_argument("r must be >= 0");
+    if (!(S >= 0.0)) throw std::invalid_argument("S must be >= 0 (or \"inf\")");
+    const double H = slut_nl_H(T, g, S), E = slut_nl_E(T, g, r, S);
+    eval_put(out, "exact", (H > 0.0 && std::isfinite(H)) ? E * H : H);
+    eval_put(out, "E", E);
+    eval_put(out, "H", H);
+    const NearLightTable *t = covering(tables, T, g, r, S);
+    if (t) eval_put(out, "table", t->E(T, g, r, S) * H);
+    else out["table"] = nullptr;
+    eval_put(out, "approx", slut_nl_N_thin(T, g, r, S));
+}
 
-private:
-    bool finite_, anisotropic_;
-};
+// "near_light": the radiance of a view ray into the medium, exact, from the table, and the
+// thin-medium and distant-light closed forms.
+void answer_near_light(const nlohmann::json &q, nlohmann::json &out, const EvalTables &tables) {
+    const NearLightQuery n = eval_near_light_query(q);
+    eval_put(out, "exact", near_light_radiance_exact(n)); // validates the query
+    const NearLightParams p = near_light_params(n);
+    const NearLightTable *t = p.light_below ? nullptr : covering(tables, p.T, p.g, p.r, p.S);
+    if (t) eval_put(out, "table", t->radiance(n));
+    else if (p.light_below && any_near_light(tables)) out["table"] = 0.0;
+    else out["table"] = nullptr;
+    eval_put(out, "approx", near_light_radiance_thin(n));
+    eval_put(out, "distant", near_light_radiance_distant(n));
+}
 
 } // namespace
 
-const RuntimeKind &near_light_thick_runtime_kind() {
-    static const NearLightRuntime kind(false, false);
-    return kind;
-}
-
-const RuntimeKind &near_light_slab_runtime_kind() {
-    static const NearLightRuntime kind(true, false);
-    return kind;
-}
-
-const RuntimeKind &near_light_thick_hg_runtime_kind() {
-    static const NearLightRuntime kind(false, true);
-    return kind;
-}
-
-const RuntimeKind &near_light_slab_hg_runtime_kind() {
-    static const NearLightRuntime kind(true, true);
-    return kind;
+const RuntimeKind &near_light_runtime_kind(bool finite_thickness, bool anisotropic) {
+    static const std::vector<EvalAnswer> answers = {{"N", answer_N}, {"near_light", answer_near_light}};
+    static const RuntimeKindOf<NearLightTable> thick(kKindNearLightE3, answers), slab(kKindNearLightE4, answers);
+    static const RuntimeKindOf<NearLightHgTable> thick_hg(kKindNearLightE3Hg), slab_hg(kKindNearLightE4Hg);
+    if (anisotropic) return finite_thickness ? slab_hg : thick_hg;
+    return finite_thickness ? slab : thick;
 }
 
 } // namespace scatterlut

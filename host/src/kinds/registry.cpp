@@ -1,23 +1,28 @@
-// The registry of table kinds: the one list of their descriptors (table_kind.hpp); names are
-// compared in kinds/runtime_registry.cpp.
+// The registry of table kinds: the one list of their descriptors (table_kind.hpp), in the
+// order of the runtime facets' registry (kinds/runtime_registry.cpp), where names are compared.
+#include <stdexcept>
+
 #include "kinds/table_kind.hpp"
 
 namespace scatterlut {
 
-// Each kind's file defines its instance.
-const TableKind &airlight_table_kind();
-const TableKind &near_light_thick_table_kind();
-const TableKind &near_light_slab_table_kind();
-const TableKind &airlight_hg_table_kind();
-const TableKind &near_light_thick_hg_table_kind();
-const TableKind &near_light_slab_hg_table_kind();
-const TableKind &surface_table_kind();
+// Each kind's file defines its instances.
+const std::vector<const TableKind *> &airlight_table_kinds();   // kinds/airlight_kind.cpp
+const std::vector<const TableKind *> &near_light_table_kinds(); // kinds/nearlight_kind.cpp
+const std::vector<const TableKind *> &surface_table_kinds();    // kinds/surface_kind.cpp
 
 const std::vector<const TableKind *> &table_kinds() {
-    static const std::vector<const TableKind *> kinds = {&airlight_table_kind(), &near_light_thick_table_kind(),
-                                                         &near_light_slab_table_kind(), &airlight_hg_table_kind(),
-                                                         &near_light_thick_hg_table_kind(), &near_light_slab_hg_table_kind(),
-                                                         &surface_table_kind()};
+    static const std::vector<const TableKind *> kinds = [] {
+        std::vector<const TableKind *> defined, ordered;
+        for (const auto *of_file : {&airlight_table_kinds(), &near_light_table_kinds(), &surface_table_kinds()})
+            defined.insert(defined.end(), of_file->begin(), of_file->end());
+        for (const RuntimeKind *runtime : runtime_kinds())
+            for (const TableKind *k : defined)
+                if (&k->runtime() == runtime) ordered.push_back(k);
+        if (ordered.size() != defined.size() || ordered.size() != runtime_kinds().size())
+            throw std::logic_error("every table kind needs its own runtime facet in kinds/runtime_registry.cpp");
+        return ordered;
+    }();
     return kinds;
 }
 

@@ -8,7 +8,9 @@
 #pragma once
 
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -33,6 +35,11 @@ template <class R> struct SamplerOf final : RuntimeSampler {
     R runtime;
 };
 
+// The runtime class R of a sampler made as a SamplerOf<R> (std::bad_cast for another).
+template <class R> const R &runtime_of(const RuntimeSampler &sampler) {
+    return dynamic_cast<const SamplerOf<R> &>(sampler).runtime;
+}
+
 // The first loaded table whose sampler is a SamplerOf<R> and that `accepts`, or nullptr.
 template <class R, class Accept>
 const R *first_runtime(const std::vector<std::shared_ptr<const RuntimeSampler>> &samplers, Accept accepts) {
@@ -56,6 +63,47 @@ public:
     virtual void answer_eval(const std::string &quantity, const nlohmann::json &query, nlohmann::json &out,
                              const EvalTables &tables) const = 0;
 };
+
+// One eval quantity a kind answers: its "quantity" value and the function that answers a
+// query of it into `out`, using the loaded tables it can.
+struct EvalAnswer {
+    const char *quantity;
+    void (*answer)(const nlohmann::json &query, nlohmann::json &out, const EvalTables &tables);
+};
+
+// The runtime facet of a kind whose sampler is the runtime class R (AirlightTable, …): its
+// name, its sampler and the eval quantities it answers (none for some kinds).
+template <class R> class RuntimeKindOf final : public RuntimeKind {
+public:
+    explicit RuntimeKindOf(const char *name, std::vector<EvalAnswer> answers = {})
+        : name_(name), answers_(std::move(answers)) {}
+    const char *name() const override { return name_; }
+    std::shared_ptr<const RuntimeSampler> make_sampler(Table table) const override {
+        return std::make_shared<SamplerOf<R>>(std::move(table));
+    }
+    std::vector<std::string> eval_quantities() const override {
+        std::vector<std::string> q;
+        for (const EvalAnswer &a : answers_) q.emplace_back(a.quantity);
+        return q;
+    }
+    void answer_eval(const std::string &quantity, const nlohmann::json &query, nlohmann::json &out,
+                     const EvalTables &tables) const override {
+        for (const EvalAnswer &a : answers_)
+            if (quantity == a.quantity) return a.answer(query, out, tables);
+        throw std::logic_error(std::string("the kind ") + name_ + " answers no eval quantity '" + quantity + "'");
+    }
+
+private:
+    const char *name_; // Table::kind of its tables (kKindAirlightF, …)
+    std::vector<EvalAnswer> answers_;
+};
+
+// Each kind's runtime facets, defined in kinds/<kind>_runtime.cpp and listed in
+// kinds/runtime_registry.cpp. anisotropic: the Henyey–Greenstein kind (airlight_Fg,
+// near_light_E3_hg, …); finite_thickness: the slab kind E4 (else E3).
+const RuntimeKind &airlight_runtime_kind(bool anisotropic);
+const RuntimeKind &near_light_runtime_kind(bool finite_thickness, bool anisotropic);
+const RuntimeKind &surface_runtime_kind();
 
 // Every kind's runtime facet, in the registry's order.
 const std::vector<const RuntimeKind *> &runtime_kinds();

@@ -7,21 +7,19 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <random>
 #include <stdexcept>
 #include <string>
 
 #include "generate_surface.hpp"
 #include "kinds/derivation.hpp"
-#include "measure_util.hpp"
+#include "kinds/planned_kind.hpp"
 #include "plan.hpp"
+#include "scene_queries.hpp"
 #include "text_format.hpp"
 #include "scatterlut/surface.hpp"
 #include "scatterlut/surface_table.hpp"
 
 namespace scatterlut {
-
-const RuntimeKind &surface_runtime_kind(); // kinds/surface_runtime.cpp
 
 namespace {
 
@@ -31,17 +29,6 @@ struct Demand {
     double T_max = 0;
     double relative_error = HUGE_VAL;
 };
-
-// The queries of a table: surface points and lights, and the exponent they are for.
-struct SurfaceQueries {
-    std::vector<SurfaceQuery> queries;
-    int exponent = 1;
-};
-
-const SurfacePlan &plan_of(const std::any &plan) { return std::any_cast<const SurfacePlan &>(plan); }
-SurfacePlan &plan_of(std::any &plan) { return std::any_cast<SurfacePlan &>(plan); }
-const SurfaceQueries &queries_of(const RadianceQueries &q) { return std::any_cast<const SurfaceQueries &>(q.queries); }
-const SurfaceTable &runtime_of(const RuntimeSampler &s) { return dynamic_cast<const SamplerOf<SurfaceTable> &>(s).runtime; }
 
 double optical_distance(const SurfaceQuery &q) { return (q.sigma_s_per_m + q.sigma_a_per_m) * q.distance_m; }
 
@@ -53,43 +40,22 @@ double table_of(const SurfaceTable &table, const SurfaceQuery &q) {
     return table.exponent() == 1 ? table.irradiance(q) : table.specular(q);
 }
 
-// The scene's surface queries for exponent n: for every medium whose surfaces need n and every
-// point light lighting it, in equal shares, each colour channel in turn: D log-uniform over
-// the surfaces' light_distance_m, θ uniform in [0, π] (θ_s for n = 1, θ_r for n > 1).
-std::vector<SurfaceQuery> sample_surface_queries(const Scene &scene, int n, size_t count, uint64_t seed) {
-    struct Pair {
-        const SceneMedium *medium;
-        const SceneLight *light;
-    };
-    std::vector<Pair> pairs;
-    for (const SceneMedium &m : scene.media) {
-        if (!m.has_surfaces || m.sigma_s_per_m == 0) continue;
-        const std::vector<int> e = m.surfaces.exponents();
-        if (std::find(e.begin(), e.end(), n) == e.end()) continue;
-        for (const SceneLight &l : scene.lights)
-            if (l.type == LightType::Point && Scene::lights_medium(l, m)) pairs.push_back({&m, &l});
-    }
-    std::vector<SurfaceQuery> out;
-    if (pairs.empty()) return out;
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    for (size_t k = 0; k < count; ++k) {
-        const Pair &p = pairs[k % pairs.size()];
-        const size_t c = (k / pairs.size()) % 3;
-        const Range &d = p.medium->surfaces.light_distance_m;
-        SurfaceQuery q;
-        q.sigma_s_per_m = p.medium->sigma_s_rgb_per_m[c];
-        q.sigma_a_per_m = p.medium->sigma_a_rgb_per_m[c];
-        q.intensity_W_per_sr = p.light->intensity_W_per_sr;
-        q.distance_m = d.min * std::pow(d.max / d.min, unit(rng));
-        q.theta_rad = SLUT_PI * unit(rng);
-        out.push_back(q);
-    }
-    return out;
-}
-
-class SurfaceKind final : public TableKind {
+class SurfaceKind final : public PlannedKind<SurfaceKind, SurfacePlan, SurfaceTable, SurfaceQuery> {
 public:
+    // For PlannedKind: the generator (generate_surface.hpp) and the runtime's answers.
+    static constexpr auto layout_of = make_surface_table_layout;
+    static constexpr auto integrate_nodes = integrate_surface_G;
+    static constexpr auto measure_integration = measure_surface_integration;
+    static constexpr auto measure_sampling = measure_surface_sampling;
+    static Table generate_table(Device &device, const SurfacePlan &plan, const Provenance &provenance,
+                                const std::function<void(double)> &) { // no progress to report
+        return generate_surface_table(device, plan, provenance);
+    }
+    static double query_radiance(const SurfaceTable &surface, const SurfaceQuery &q) { return table_of(surface, q); }
+    static double lookup(const SurfaceTable &surface, const double *T_theta, size_t) {
+        return surface.G(T_theta[0], T_theta[1]);
+    }
+
     const RuntimeKind &runtime() const override { return surface_runtime_kind(); }
     bool per_exponent() const override { return true; }
 
@@ -136,90 +102,38 @@ public:
         p.n_T = c[0];
         p.n_theta = p.exponent == 1 ? std::max(3, c[1] | 1) : std::max(3, c[1]); // n = 1: a node at theta_s = pi/2
     }
-    void set_storage(std::any &plan, Storage storage) const override { plan_of(plan).storage = storage; }
-    double integration_tolerance(const std::any &plan) const override { return plan_of(plan).integration_tolerance; }
-    double interpolation_ln_floor() const override { return -HUGE_VAL; }
-
-    Table layout(const std::any &plan, double tolerance) const override {
-        SurfacePlan p = plan_of(plan);
-        p.integration_tolerance = tolerance;
-        return make_surface_table_layout(p);
-    }
-    std::vector<double> integrate(Device &device, const Table &layout, double tolerance) const override {
-        return integrate_surface_G(device, layout, tolerance);
-    }
-    Table generate(Device &device, const std::any &plan, const Provenance &provenance,
-                   const std::function<void(double)> &) const override {
-        return generate_surface_table(device, plan_of(plan), provenance);
-    }
-
-    std::vector<NodeIndex> generator_nodes(const Table &table, int nodes, uint64_t seed) const override {
-        return surface_measurement_nodes(table, nodes, seed);
-    }
-    double integration_error(const RuntimeSampler &sampler, const std::vector<NodeIndex> &nodes,
-                             IntegrationReference reference) const override {
-        return measure_surface_integration(runtime_of(sampler), nodes, reference);
-    }
-    SamplingStats sampling_error(const RuntimeSampler &sampler, int points, uint64_t seed) const override {
-        return measure_surface_sampling(runtime_of(sampler), points, seed);
-    }
 
     RadianceQueries radiance_queries(const Scene &scene, const std::any &plan, size_t count,
                                      uint64_t seed) const override {
-        const SurfacePlan &p = plan_of(plan);
-        std::vector<SurfaceQuery> all = sample_surface_queries(scene, p.exponent, count, seed);
-        std::vector<double> exact(all.size());
-        parallel_for(static_cast<int>(all.size()),
-                     [&](int i) { exact[static_cast<size_t>(i)] = exact_of(all[static_cast<size_t>(i)], p.exponent); });
-        SurfaceQueries kept;
-        kept.exponent = p.exponent;
-        RadianceQueries s;
-        for (size_t i = 0; i < all.size(); ++i)
-            if (std::isfinite(exact[i]) && exact[i] > 0 && optical_distance(all[i]) <= p.T_max) {
-                kept.queries.push_back(all[i]);
-                s.exact.push_back(exact[i]);
-            }
-        s.queries = std::move(kept);
-        s.description = std::string(p.exponent == 1 ? "scattered irradiance E_ss (W/m^2)" : "specular lobe S_n (W/m^2)") +
-                        " of the scene's lit surfaces: every medium with surfaces and point light lighting it, every "
-                        "colour channel, the light at D log-uniform over surfaces.light_distance_m, theta uniform in "
-                        "[0, pi]; queries beyond the table's T_max left out";
-        return s;
+        const int n = plan_of(plan).exponent;
+        const double T_max = plan_of(plan).T_max;
+        return served_queries(
+            sample_surface_queries(scene, n, count, seed), [n](const SurfaceQuery &q) { return exact_of(q, n); },
+            [T_max](const SurfaceQuery &q) { return optical_distance(q) <= T_max; },
+            std::string(n == 1 ? "scattered irradiance E_ss (W/m^2)" : "specular lobe S_n (W/m^2)") +
+                " of the scene's lit surfaces: every medium with surfaces and point light lighting it, every "
+                "colour channel, the light at D log-uniform over surfaces.light_distance_m, theta uniform in "
+                "[0, pi]; queries beyond the table's T_max left out");
     }
 
     std::vector<RuntimeMethod> runtime_methods(const Table &table, const RadianceQueries &qs) const override {
-        const SurfaceQueries *q = &queries_of(qs);
-        const int n = q->exponent;
+        const std::vector<SurfaceQuery> *q = &queries_of(qs);
+        const int n = surface_table_exponent(table);
         std::vector<RuntimeMethod> m = {
             {"exact", n == 1 ? "adaptive quadrature per call (surface_irradiance_exact)"
                              : "adaptive quadrature per call (surface_specular_exact)",
-             true, [q, n](size_t k) { return exact_of(q->queries[k], n); }},
+             true, [q, n](size_t k) { return exact_of((*q)[k], n); }},
             {"table", n == 1 ? "one sample of the planned table (SurfaceTable::irradiance)"
                              : "one sample of the planned table (SurfaceTable::specular)",
              false, table_radiance(table, qs)}};
         if (n == 1) {
             m.push_back({"no_extinction", "closed form without extinction (surface_irradiance_no_extinction)", false,
-                         [q](size_t k) { return surface_irradiance_no_extinction(q->queries[k]); }});
+                         [q](size_t k) { return surface_irradiance_no_extinction((*q)[k]); }});
             m.push_back({"attenuated", "the same times e^(-sigma_t D), an engine fudge", false, [q](size_t k) {
-                             return surface_irradiance_no_extinction(q->queries[k]) * std::exp(-optical_distance(q->queries[k]));
+                             return surface_irradiance_no_extinction((*q)[k]) * std::exp(-optical_distance((*q)[k]));
                          }});
         }
         return m;
-    }
-    std::function<double(size_t)> table_radiance(const Table &table, const RadianceQueries &qs) const override {
-        auto surface = std::make_shared<SurfaceTable>(table);
-        const SurfaceQueries *q = &queries_of(qs);
-        return [surface, q](size_t k) { return table_of(*surface, q->queries[k]); };
-    }
-    std::function<double()> lookup_loop(const Table &table, const std::vector<double> &p, size_t count) const override {
-        auto surface = std::make_shared<SurfaceTable>(table);
-        const std::vector<double> *params = &p;
-        return [surface, params, count] {
-            const std::vector<double> &pp = *params;
-            double sum = 0;
-            for (size_t i = 0; i < count; ++i) sum += surface->G(pp[2 * i], pp[2 * i + 1]);
-            return sum;
-        };
     }
     const char *runtime_class() const override { return "SurfaceTable"; }
     const char *independent_reference() const override {
@@ -236,9 +150,10 @@ public:
 
 } // namespace
 
-const TableKind &surface_table_kind() {
+const std::vector<const TableKind *> &surface_table_kinds() {
     static const SurfaceKind kind;
-    return kind;
+    static const std::vector<const TableKind *> kinds = {&kind};
+    return kinds;
 }
 
 } // namespace scatterlut

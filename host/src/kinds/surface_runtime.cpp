@@ -52,41 +52,35 @@ const SurfaceTable *table_serving(const EvalTables &tables, int exponent, double
     });
 }
 
-class SurfaceRuntime final : public RuntimeKind {
-public:
-    const char *name() const override { return kKindSurfaceG; }
-    std::shared_ptr<const RuntimeSampler> make_sampler(Table table) const override {
-        return std::make_shared<SamplerOf<SurfaceTable>>(std::move(table));
-    }
-    std::vector<std::string> eval_quantities() const override { return {"surface", "surface_specular"}; }
-    void answer_eval(const std::string &quantity, const nlohmann::json &q, nlohmann::json &out,
-                     const EvalTables &tables) const override {
-        if (quantity == "surface") {
-            const SurfaceQuery s = surface_query(q, "theta_s");
-            eval_put(out, "exact", surface_irradiance_exact(s)); // validates the query
-            const double T = (s.sigma_s_per_m + s.sigma_a_per_m) * s.distance_m;
-            if (const SurfaceTable *table = table_serving(tables, 1, T)) eval_put(out, "table", table->irradiance(s));
-            else out["table"] = nullptr;
-            eval_put(out, "no_extinction", surface_irradiance_no_extinction(s));
-            eval_put(out, "direct", s.intensity_W_per_sr * std::exp(-T) * std::fmax(std::cos(s.theta_rad), 0.0) /
-                                        (s.distance_m * s.distance_m));
-            return;
-        }
-        const SurfaceQuery s = surface_query(q, "theta_r"); // quantity "surface_specular"
-        const int n = surface_exponent(q);
-        eval_put(out, "exact", surface_specular_exact(s, n)); // validates the query
-        const double T = (s.sigma_s_per_m + s.sigma_a_per_m) * s.distance_m;
-        if (const SurfaceTable *table = table_serving(tables, n, T)) eval_put(out, "table", table->specular(s));
-        else out["table"] = nullptr;
-        eval_put(out, "direct", s.intensity_W_per_sr * std::exp(-T) * std::pow(std::fmax(std::cos(s.theta_rad), 0.0), n) /
-                                    (s.distance_m * s.distance_m));
-    }
-};
+// "surface": E_ss exact, from the diffuse table, without extinction, and the direct irradiance.
+void answer_surface(const nlohmann::json &q, nlohmann::json &out, const EvalTables &tables) {
+    const SurfaceQuery s = surface_query(q, "theta_s");
+    eval_put(out, "exact", surface_irradiance_exact(s)); // validates the query
+    const double T = (s.sigma_s_per_m + s.sigma_a_per_m) * s.distance_m;
+    if (const SurfaceTable *table = table_serving(tables, 1, T)) eval_put(out, "table", table->irradiance(s));
+    else out["table"] = nullptr;
+    eval_put(out, "no_extinction", surface_irradiance_no_extinction(s));
+    eval_put(out, "direct", s.intensity_W_per_sr * std::exp(-T) * std::fmax(std::cos(s.theta_rad), 0.0) /
+                                (s.distance_m * s.distance_m));
+}
+
+// "surface_specular": S_n exact, from the exponent-n table, and the direct lobe.
+void answer_surface_specular(const nlohmann::json &q, nlohmann::json &out, const EvalTables &tables) {
+    const SurfaceQuery s = surface_query(q, "theta_r");
+    const int n = surface_exponent(q);
+    eval_put(out, "exact", surface_specular_exact(s, n)); // validates the query
+    const double T = (s.sigma_s_per_m + s.sigma_a_per_m) * s.distance_m;
+    if (const SurfaceTable *table = table_serving(tables, n, T)) eval_put(out, "table", table->specular(s));
+    else out["table"] = nullptr;
+    eval_put(out, "direct", s.intensity_W_per_sr * std::exp(-T) * std::pow(std::fmax(std::cos(s.theta_rad), 0.0), n) /
+                                (s.distance_m * s.distance_m));
+}
 
 } // namespace
 
 const RuntimeKind &surface_runtime_kind() {
-    static const SurfaceRuntime kind;
+    static const RuntimeKindOf<SurfaceTable> kind(
+        kKindSurfaceG, {{"surface", answer_surface}, {"surface_specular", answer_surface_specular}});
     return kind;
 }
 

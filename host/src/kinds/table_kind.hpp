@@ -3,18 +3,20 @@
 //
 // A kind is an abstract class with one registered instance per kind, not a struct of
 // function pointers: a kind has state that several of its functions share (the near-light
-// class serves E3 and E4, parameterized by slab / thick, and is registered twice), and the
-// compiler checks that a new kind supplies every function. The instances are listed once,
-// in kinds/registry.cpp. A kind's name, runtime sampler and eval answers are its runtime facet
+// class template serves E3 and E4, parameterized by slab / thick), and the compiler checks
+// that a new kind supplies every function. Each kind file lists its instances
+// (<kind>_table_kinds()), kinds/registry.cpp gathers them. A kind's name, runtime sampler and eval answers are its runtime facet
 // (runtime_kind.hpp: it links without OpenCL, as eval does); find_runtime_kind() is the one
 // place where a kind's name (Table::kind, the file stem) is compared with a string.
 //
 // Each kind keeps its own plan type (AirlightPlan, NearLightPlan, …) in a std::any: the
 // planner, the search and the report pass it back to the kind, which alone reads it.
 //
-// Adding a kind: kinds/<kind>.cpp (a subclass of TableKind and a function returning its
-// instance) and kinds/<kind>_runtime.cpp (its RuntimeKind), one line in kinds/registry.cpp and
-// one in kinds/runtime_registry.cpp, both files in host/CMakeLists.txt.
+// Adding a kind: kinds/<kind>_kind.cpp (a subclass of PlannedKind, kinds/planned_kind.hpp, which
+// supplies what every kind does the same way, and <kind>_table_kinds() listing its instances)
+// and kinds/<kind>_runtime.cpp (its RuntimeKindOf<Runtime>), one line in kinds/registry.cpp and
+// one in kinds/runtime_registry.cpp, both files in host/CMakeLists.txt (docs/ARCHITECTURE.md
+// lists the rest).
 #pragma once
 
 #include <any>
