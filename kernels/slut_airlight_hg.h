@@ -430,16 +430,23 @@ SLUT_FN double slut_hg_airlight_bracket(double optical_distance, double sin_half
     return K / seg.mu;
 }
 
-/* The radiance from its bracket: σ_s/(4π)·I0·(2/D)·e^{−σ_t D}·B_g, W/(m²·sr) for I0 in W/sr,
- * σ in 1/m, D in m. 0 for B ≤ 0, +∞ for B = +∞; where σ_s·I0·e^{−σ_t D}/D leaves the working
- * type's normal range the product is formed in logarithms. */
-SLUT_FN double slut_hg_airlight_from_bracket(double sigma_s, double sigma_t, double intensity, double distance,
-                                             double B) {
+/* The radiance from its bracket: σ_s/(4π)·I0·(2/D)·e^{−τ}·B_g, τ = σ_t D the optical distance
+ * to the light, W/(m²·sr) for I0 in W/sr, σ_s in 1/m, D in m. 0 for B ≤ 0, +∞ for B = +∞;
+ * where σ_s·I0·e^{−τ}/D leaves the working type's normal range the product is formed in
+ * logarithms. */
+SLUT_FN double slut_hg_airlight_from_bracket_at(double sigma_s, double intensity, double distance,
+                                                double optical_distance, double B) {
     if (!(B > 0.0)) return 0.0;
     if (!SLUT_ISFINITE(B)) return SLUT_HUGE_VAL;
-    double scale = sigma_s * SLUT_INV_4PI * intensity * 2.0 / distance * exp(-sigma_t * distance);
+    double scale = sigma_s * SLUT_INV_4PI * intensity * 2.0 / distance * exp(-optical_distance);
     if (scale >= SLUT_REAL_MIN_NORMAL && scale <= SLUT_INFINITE_ABOVE) return scale * B;
-    return exp(log(sigma_s) + log(SLUT_INV_4PI * 2.0) + log(intensity) - log(distance) - sigma_t * distance + log(B));
+    return exp(log(sigma_s) + log(SLUT_INV_4PI * 2.0) + log(intensity) - log(distance) - optical_distance + log(B));
+}
+
+/* The same with τ = σ_t·D formed here (σ_t in 1/m). */
+SLUT_FN double slut_hg_airlight_from_bracket(double sigma_s, double sigma_t, double intensity, double distance,
+                                             double B) {
+    return slut_hg_airlight_from_bracket_at(sigma_s, intensity, distance, sigma_t * distance, B);
 }
 
 /* Exact anisotropic airlight radiance, W/(m²·sr) for I0 in W/sr, coefficients in 1/m,

@@ -1,5 +1,6 @@
 #include "scatterlut/anisotropic.hpp"
 
+#include "nearlight_query.hpp"
 #include "require.hpp"
 
 #include <cmath>
@@ -28,26 +29,18 @@ double airlight_hg(const AirlightQuery &q, double phase_g) {
         slut_hg_airlight_bracket(sigma_t * q.distance_m, sin_half, cos_half, s_over_D, phase_g, 1.0));
 }
 
-// The near light of one channel (q validated, phase_g ≠ 0): the parameters as
-// near_light_params (eye-side refraction included), E_g by quadrature, σ_s/(4π)·I0·E_g·(T·H)/l
-// assembled by slut_nl_assemble (kernels/slut_nearlight_frontend.h).
+// The near light of one channel (q validated, phase_g ≠ 0): the parameters and the exit's
+// Fresnel factor as the isotropic near light's (nearlight_query.hpp: eye-side refraction
+// included), E_g by quadrature, σ_s/(4π)·I0·E_g·(T·H)/l assembled by slut_nl_assemble
+// (kernels/slut_nearlight_frontend.h).
 double near_light_hg(const NearLightQuery &q, double phase_g) {
-    double eye_inside[3] = {q.eye_dir[0], q.eye_dir[1], q.eye_dir[2]};
-    const double mu_e = q.eye_dir[0] * q.normal[0] + q.eye_dir[1] * q.normal[1] + q.eye_dir[2] * q.normal[2];
-    require(mu_e > 0.0, "the viewer is below the surface (eye_dir . normal <= 0)");
-    double transmittance = 1.0;
-    if (q.eta != 1.0) {
-        const double cos_t = slut_refract_eye_dir(q.normal, q.eye_dir, q.eta, eye_inside);
-        if (q.fresnel) transmittance = slut_fresnel_transmittance(mu_e, cos_t, q.eta);
-    }
-    slut_nl_params p;
-    slut_nl_params_from_geometry(q.normal, eye_inside, q.light_rel_m, q.sigma_s_per_m + q.sigma_a_per_m, q.length_m,
-                                 &p);
+    const slut_nl_params p = detail::near_light_params_unchecked(q);
     // E_g by quadrature only where slut_nl_assemble multiplies by it (light, and a finite H).
     const bool lit = p.kind == SLUT_NL_OK && q.sigma_s_per_m > 0.0 && q.intensity_W_per_sr > 0.0 && q.length_m > 0.0 &&
                      p.distance_m > 0.0 && std::isfinite(slut_nl_H_scaled(p.g, p.S_over_T));
     const double E = lit ? slut_hg_nl_E(p.T, p.g, p.r, p.S_over_T, phase_g, 1.0) : 0.0;
-    return slut_nl_assemble(p, q.sigma_s_per_m, q.intensity_W_per_sr, q.length_m, transmittance, E);
+    return slut_nl_assemble(p, q.sigma_s_per_m, q.intensity_W_per_sr, q.length_m,
+                            detail::near_light_exit_transmittance(q), E);
 }
 
 } // namespace
@@ -65,13 +58,7 @@ void check_rgb_coefficients(const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m) 
 }
 
 double airlight_radiance_from_bracket(const AirlightQuery &q, double optical_distance, double B) {
-    if (!(B > 0.0)) return 0.0;
-    if (!std::isfinite(B)) return HUGE_VAL;
-    const double scale =
-        q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * 2.0 / q.distance_m * std::exp(-optical_distance);
-    if (scale >= SLUT_DBL_MIN_NORMAL && scale <= 1e300) return scale * B;
-    return std::exp(std::log(q.sigma_s_per_m) + std::log(SLUT_INV_4PI * 2.0) + std::log(q.intensity_W_per_sr) -
-                    std::log(q.distance_m) - optical_distance + std::log(B));
+    return slut_hg_airlight_from_bracket_at(q.sigma_s_per_m, q.intensity_W_per_sr, q.distance_m, optical_distance, B);
 }
 
 namespace {

@@ -9,6 +9,7 @@
 #include "scatterlut/io.hpp"
 #include "sampler_cell.hpp"
 #include "scatterlut/sampler.hpp"
+#include "nearlight_query.hpp"
 #include "simd4.hpp"
 
 extern "C" {
@@ -25,7 +26,10 @@ bool unit_vector(const double *v) {
     return std::fabs(n2 - 1.0) < 1e-9;
 }
 
-slut_nl_params params_unchecked(const NearLightQuery &q);
+using detail::near_light_exit_transmittance;
+using detail::near_light_params_unchecked;
+
+slut_nl_params params_unchecked(const NearLightQuery &q) { return near_light_params_unchecked(q); }
 
 slut_nl_params params(const NearLightQuery &q) {
     check_near_light_query(q);
@@ -34,19 +38,7 @@ slut_nl_params params(const NearLightQuery &q) {
 
 slut_vec3 vec3(const double *v) { return slut_vec3_make(v[0], v[1], v[2]); }
 
-// (T, g, r, S) of the query: slut_nl_params_seen (the eye ray refracted where eta ≠ 1), the
-// front-end the near-light snippet calls too.
-slut_nl_params params_unchecked(const NearLightQuery &q) {
-    const slut_vec3 normal = vec3(q.normal), eye = vec3(q.eye_dir);
-    require(slut_vec3_dot(eye, normal) > 0.0, "the viewer is below the surface (eye_dir . normal <= 0)");
-    return slut_nl_params_seen(normal, eye, vec3(q.light_rel_m), q.sigma_s_per_m + q.sigma_a_per_m, q.length_m,
-                               q.eta);
-}
-
-// The Fresnel factor of the exit, 1 without refraction or without `fresnel`.
-double exit_transmittance(const NearLightQuery &q) {
-    return slut_exit_transmittance(vec3(q.normal), vec3(q.eye_dir), q.eta, q.fresnel ? 1 : 0);
-}
+double exit_transmittance(const NearLightQuery &q) { return near_light_exit_transmittance(q); }
 
 // σ_s/(4π)·I0·E·(T·H)/l with the exit's Fresnel factor (slut_nl_assemble); the factor only
 // where the assembly uses it.
@@ -56,6 +48,19 @@ double assemble(const NearLightQuery &q, const slut_nl_params &p, double E) {
 }
 
 } // namespace
+
+// (T, g, r, S) of the query: slut_nl_params_seen (the eye ray refracted where eta ≠ 1), the
+// front-end the near-light snippet calls too.
+slut_nl_params detail::near_light_params_unchecked(const NearLightQuery &q) {
+    const slut_vec3 normal = vec3(q.normal), eye = vec3(q.eye_dir);
+    require(slut_vec3_dot(eye, normal) > 0.0, "the viewer is below the surface (eye_dir . normal <= 0)");
+    return slut_nl_params_seen(normal, eye, vec3(q.light_rel_m), q.sigma_s_per_m + q.sigma_a_per_m, q.length_m,
+                               q.eta);
+}
+
+double detail::near_light_exit_transmittance(const NearLightQuery &q) {
+    return slut_exit_transmittance(vec3(q.normal), vec3(q.eye_dir), q.eta, q.fresnel ? 1 : 0);
+}
 
 void check_near_light_query(const NearLightQuery &q) {
     require(q.sigma_s_per_m >= 0.0 && std::isfinite(q.sigma_s_per_m), "sigma_s must be finite and >= 0 (1/m)");

@@ -1,5 +1,6 @@
 #include "scatterlut/nearlight_hg.hpp"
 
+#include "nearlight_query.hpp"
 #include "require.hpp"
 
 #include <cmath>
@@ -40,15 +41,10 @@ bool in_table(const NearLightTable &t, const NearLightQuery &q, NearLightParams 
     return !p->light_below && p->T > 0.0 && t.covers(p->T, p->g, p->r, p->S);
 }
 
-// The raw geometry of slut_nl_params (eye-side refraction as near_light_params).
+// The parameters of the query, checked (nearlight_query.hpp: eye-side refraction as near_light_params).
 slut_nl_params geometry(const NearLightQuery &q) {
     check_near_light_query(q);
-    double eye_inside[3] = {q.eye_dir[0], q.eye_dir[1], q.eye_dir[2]};
-    if (q.eta != 1.0) slut_refract_eye_dir(q.normal, q.eye_dir, q.eta, eye_inside);
-    slut_nl_params p;
-    slut_nl_params_from_geometry(q.normal, eye_inside, q.light_rel_m, q.sigma_s_per_m + q.sigma_a_per_m, q.length_m,
-                                 &p);
-    return p;
+    return detail::near_light_params_unchecked(q);
 }
 
 // q with one channel's coefficients (1/m).
