@@ -160,7 +160,8 @@ TEST(NearLightKernel, LaneExpMatchesBuiltin) {
                                "    double16 v = vload16(i, x);\n"
                                "    vstore16(slut_nl_lanes_exp(v), i, lane);\n"
                                "    vstore16(exp(v), i, builtin);\n"
-                               "}\n";
+                               "}\n"
+                               "__kernel void exp_variant(__global int *avx512) { avx512[0] = SLUT_NL_EXP_AVX512; }\n";
     // Both ways of the integer steps: the device's own (AVX-512 where the compiler targets it)
     // and the portable one.
     for (const char *variant : {"", " -DSLUT_NL_EXP_AVX512=0"}) {
@@ -225,8 +226,17 @@ TEST(NearLightKernel, LaneExpMatchesBuiltin) {
         if (pocl) {
             EXPECT_EQ(differing, 0u) << "of " << x.size() << " arguments";
         }
-        std::printf("lane exp%s: %zu arguments (%zu finite non-zero results), %zu differ from the builtin (%s)\n",
-                    variant, x.size(), nonzero_finite, differing, dev.info().platform_name.c_str());
+        // Which integer steps this build compiled (SLUT_NL_EXP_AVX512: 1 where the device's
+        // compiler targets AVX-512), so that the output says what was compared.
+        int avx512 = -1;
+        const cl::Buffer out_variant(dev.context(), CL_MEM_WRITE_ONLY, sizeof(int));
+        cl::Kernel variant_kernel(program, "exp_variant");
+        variant_kernel.setArg(0, out_variant);
+        dev.queue().enqueueNDRangeKernel(variant_kernel, cl::NullRange, cl::NDRange(1), cl::NullRange);
+        dev.queue().enqueueReadBuffer(out_variant, CL_TRUE, 0, sizeof(int), &avx512);
+        std::printf("lane exp%s (SLUT_NL_EXP_AVX512 = %d): %zu arguments (%zu finite non-zero results), %zu differ "
+                    "from the builtin (%s)\n",
+                    variant, avx512, x.size(), nonzero_finite, differing, dev.info().platform_name.c_str());
     }
 }
 
