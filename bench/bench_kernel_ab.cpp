@@ -6,9 +6,12 @@
 // which is printed too) of each, with the median and range of the per-round ratios A/B.
 //
 //   scatterlut_kernel_ab --baseline DIR [--kernels DIR] [--rounds N] [--table 3|4]
+//                        [--local-a N] [--local-b N]
 //
 // Layouts: those of BM_NearLightGeneration (bench_scatterlut.cpp): --table 3 (default) E3 64³
-// at S = ∞, --table 4 E4 32³ × 17 S values; the default integration tolerance. Both programs
+// at S = ∞, --table 4 E4 32³ × 17 S values; the default integration tolerance. --local-a and
+// --local-b: A's and B's work-groups along T (default kNearLightGroupT, the library's launch;
+// 1 is the launch before it), the T extent padded to a multiple. Both programs
 // are built from source with `-I DIR` (PoCL's kernel cache keys on the preprocessed source).
 #include <algorithm>
 #include <chrono>
@@ -56,9 +59,9 @@ struct Timing {
 };
 
 // One launch of nearlight_ln_E over `layout` (the arguments as integrate_nearlight_ln_E passes
-// them, one launch, local size 1) into `values`.
+// them, one launch, work-groups of local_T T nodes) into `values`.
 Timing run(scatterlut::Device &device, cl::Program &program, const scatterlut::Table &layout,
-           const std::vector<cl::Buffer> &nodes, std::vector<double> &values) {
+           const std::vector<cl::Buffer> &nodes, std::vector<double> &values, size_t local_T) {
     cl::Kernel kernel(program, "nearlight_ln_E");
     const cl::Buffer out = scatterlut::output_buffer(device, values);
     int arg = 0;
@@ -76,8 +79,9 @@ Timing run(scatterlut::Device &device, cl::Program &program, const scatterlut::T
     const auto wall0 = std::chrono::steady_clock::now();
     device.queue().enqueueNDRangeKernel(kernel, cl::NullRange,
                                         cl::NDRange(groups, static_cast<size_t>(layout.axes[1].map.count),
-                                                    static_cast<size_t>(layout.axes[0].map.count)),
-                                        cl::NDRange(1, 1, 1));
+                                                    (static_cast<size_t>(layout.axes[0].map.count) + local_T - 1) /
+                                                        local_T * local_T),
+                                        cl::NDRange(1, 1, local_T));
     scatterlut::wait_for_output(device, out, values);
     return {process_cpu_ms() - cpu0,
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0).count()};
@@ -92,20 +96,22 @@ double median(std::vector<double> v) {
 
 int main(int argc, char **argv) {
     std::string baseline, kernels = std::string(SLUT_SOURCE_DIR) + "/kernels";
-    int rounds = 9, table = 3;
+    int rounds = 9, table = 3, local_a = scatterlut::kNearLightGroupT, local_b = scatterlut::kNearLightGroupT;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (i + 1 < argc && a == "--baseline") baseline = argv[++i];
         else if (i + 1 < argc && a == "--kernels") kernels = argv[++i];
         else if (i + 1 < argc && a == "--rounds") rounds = std::atoi(argv[++i]);
         else if (i + 1 < argc && a == "--table") table = std::atoi(argv[++i]);
+        else if (i + 1 < argc && a == "--local-a") local_a = std::atoi(argv[++i]);
+        else if (i + 1 < argc && a == "--local-b") local_b = std::atoi(argv[++i]);
         else {
-            std::fprintf(stderr, "usage: %s --baseline DIR [--kernels DIR] [--rounds N >= 1] [--table 3|4]\n", argv[0]);
+            std::fprintf(stderr, "usage: %s --baseline DIR [--kernels DIR] [--rounds N >= 1] [--table 3|4] [--local-a N >= 1] [--local-b N >= 1]\n", argv[0]);
             return 2;
         }
     }
-    if (baseline.empty() || rounds < 1 || (table != 3 && table != 4)) {
-        std::fprintf(stderr, "usage: %s --baseline DIR [--kernels DIR] [--rounds N >= 1] [--table 3|4]\n", argv[0]);
+    if (baseline.empty() || rounds < 1 || (table != 3 && table != 4) || local_a < 1 || local_b < 1) {
+        std::fprintf(stderr, "usage: %s --baseline DIR [--kernels DIR] [--rounds N >= 1] [--table 3|4] [--local-a N >= 1] [--local-b N >= 1]\n", argv[0]);
         return 2;
     }
     try {
@@ -123,8 +129,8 @@ int main(int argc, char **argv) {
         }
         cl::Program program_a = build_from(device, baseline), program_b = build_from(device, kernels);
         std::vector<double> values_a(layout.node_count()), values_b(layout.node_count());
-        run(device, program_a, layout, nodes, values_a); // first launches: PoCL's work-group compile
-        run(device, program_b, layout, nodes, values_b);
+        run(device, program_a, layout, nodes, values_a, static_cast<size_t>(local_a)); // first launches: PoCL's work-group compile
+        run(device, program_b, layout, nodes, values_b, static_cast<size_t>(local_b));
         size_t differing = 0;
         for (size_t i = 0; i < values_a.size(); ++i) differing += std::memcmp(&values_a[i], &values_b[i], sizeof(double)) != 0;
         std::printf("E%d layout, %zu nodes: %zu differ between A (%s) and B (%s)\n", table, values_a.size(), differing,
@@ -133,11 +139,11 @@ int main(int argc, char **argv) {
         for (int r = 0; r < rounds; ++r) {
             Timing a, b;
             if (r % 2 == 0) {
-                a = run(device, program_a, layout, nodes, values_a);
-                b = run(device, program_b, layout, nodes, values_b);
+                a = run(device, program_a, layout, nodes, values_a, static_cast<size_t>(local_a));
+                b = run(device, program_b, layout, nodes, values_b, static_cast<size_t>(local_b));
             } else {
-                b = run(device, program_b, layout, nodes, values_b);
-                a = run(device, program_a, layout, nodes, values_a);
+                b = run(device, program_b, layout, nodes, values_b, static_cast<size_t>(local_b));
+                a = run(device, program_a, layout, nodes, values_a, static_cast<size_t>(local_a));
             }
             cpu_a.push_back(a.cpu_ms);
             cpu_b.push_back(b.cpu_ms);

@@ -4,7 +4,8 @@
  * of a group share one panel mesh, and the S nodes of the slab axis at (T, g) share one
  * march (slut_nl_E_sweep: the cumulative sweep, SLUT_NL_MAX_SWEEP nodes per march).
  * Output layout, axis 0 fastest: index = ((iS·n_r + ir)·n_g + ig)·n_T + iT (the file layout
- * of axes T, g, r, S). A 3-D (thick) table passes S_count = 1 and S_min = S_max = +inf and
+ * of axes T, g, r, S). The host may launch more work-items than nodes (the T extent padded to
+ * a multiple of its work-group, kNearLightGroupT): those past a count return at once. A 3-D (thick) table passes S_count = 1 and S_min = S_max = +inf and
  * gets ln E; a 4-D table gets ln(E/B), B = slut_nl_E_base (the value base), with S at node iS
  * from its slab axis (slut_nl_S_node: the q map of slut_nearlight.h for warp
  * SLUT_WARP_NL_QODDS; ascending in iS at every (T, g)).

@@ -53,24 +53,47 @@ SLUT_FN void slut_nl_expm1_8(const double *x, double *out) { vstore8(expm1(vload
 /* exp on a lane vector, the same double as the device's builtin exp gives: PoCL 3.1's vector
  * exp (SLEEF's Sleef_exp_u10, ≤ 1 ulp) restated operation by operation with its constants:
  * x = k ln 2 + s, k = rint(x/ln 2) (ln 2 in two parts, two fma), e^s by a polynomial of degree
- * 12 (its odd and even parts in s², then twice u·s + 1, all fma), then 2^k as
- * 2^⌊k/2⌋ · 2^(k−⌊k/2⌋) (both factors normal down to x = −1000; a subnormal result is
- * rounded once, in the second product); +∞ above 709.78, 0 below −1000. Only the integer
- * steps are cheaper: k by the 1.5·2^52 shift below instead of rint (the builtin rounds each
- * 4-lane quarter, PoCL's rint on a double16 is a long software sequence) and 2^j built in
- * 64-bit lanes. The node loop of slut_nl_E_sweep spends most of its time in this exp: there it
- * takes the E3 kernel's CPU time down ~7 %, tables unchanged bit for bit (bench/README.md).
- * Test: NearLightKernel.LaneExpMatchesBuiltin (1.3 million arguments, none differs). */
+ * 12 (its odd and even parts in s², then twice u·s + 1, all fma), then u·2^k rounded once
+ * (SLEEF: 2^⌊k/2⌋ · 2^(k−⌊k/2⌋), both factors normal down to x = −1000, so a subnormal result
+ * is rounded once, in the second product); +∞ above 709.78, 0 below −1000. Only the integer
+ * steps are cheaper than the builtin's (it rounds each 4-lane quarter with vroundpd and builds
+ * 2^k in 32-bit halves; PoCL's rint on a double16 is a long software sequence):
+ *  - on a CPU with AVX-512 (the macro SLUT_NL_EXP_AVX512, from the compiler's target), k by
+ *    vrndscalepd (round to nearest even, as rint) and u·2^k by vscalefpd, which rounds the
+ *    exact product once, as the two products do: two instructions per 8 lanes for the ~10
+ *    integer steps and two multiplies of 2^k. E3 64³ kernel: ~1.09× less CPU time
+ *    (bench/README.md, "the node loop's exp, second round");
+ *  - elsewhere, k by the 1.5·2^52 shift below and 2^k built in 64-bit lanes (~1.08× less
+ *    than the builtin; "the node loop's exp").
+ * The node loop of slut_nl_E_sweep spends most of its time in this exp; tables unchanged bit
+ * for bit. Test: NearLightKernel.LaneExpMatchesBuiltin (1.3 million arguments, none differs). */
+#ifndef SLUT_NL_EXP_AVX512 /* a build option -DSLUT_NL_EXP_AVX512=0 selects the portable steps (test) */
+#if defined(__AVX512F__) && defined(__has_builtin)
+#if __has_builtin(__builtin_ia32_scalefpd512_mask) && __has_builtin(__builtin_ia32_rndscalepd_mask)
+#define SLUT_NL_EXP_AVX512 1
+#endif
+#endif
+#endif
+#ifndef SLUT_NL_EXP_AVX512
+#define SLUT_NL_EXP_AVX512 0
+#endif
 SLUT_FN slut_nl_lanes slut_nl_lanes_exp(slut_nl_lanes x) {
 #pragma OPENCL FP_CONTRACT OFF
-    /* k = rint(x/ln 2) as (v + 1.5·2^52) − 1.5·2^52: the sum rounds v to an integer (ties to
-     * even, as rint) wherever |v| < 2^51, i.e. |x| < 1.5e15, and its low mantissa bits are k.
-     * Beyond, both results are replaced (0 or +∞) by the last two selects. No contraction:
-     * v is rounded before the sum, as the builtin rounds it before rint. */
-    const slut_nl_lanes round_shift = (slut_nl_lanes)(0x1.8p52);
+    /* No contraction: v is rounded before it is rounded to an integer, as in the builtin. */
     slut_nl_lanes v = x * 0x1.71547652b82fep+0;
+#if SLUT_NL_EXP_AVX512
+    /* vrndscalepd, immediate 8: round to nearest even, no precision exception. */
+    slut_nl_lanes k;
+    k.lo = __builtin_ia32_rndscalepd_mask(v.lo, 8, v.lo, (uchar)0xff, 4);
+    k.hi = __builtin_ia32_rndscalepd_mask(v.hi, 8, v.hi, (uchar)0xff, 4);
+#else
+    /* k = rint(v) as (v + 1.5·2^52) − 1.5·2^52: the sum rounds v to an integer (ties to even,
+     * as rint) wherever |v| < 2^51, i.e. |x| < 1.5e15, and its low mantissa bits are k.
+     * Beyond, both results are replaced (0 or +∞) by the last two selects. */
+    const slut_nl_lanes round_shift = (slut_nl_lanes)(0x1.8p52);
     slut_nl_lanes shifted = v + round_shift;
     slut_nl_lanes k = shifted - round_shift;
+#endif
     slut_nl_lanes s = fma(k, -0x1.62e42fefa3000p-1, x);
     s = fma(k, -0x1.3de6af278ece6p-42, s);
     slut_nl_lanes s2 = s * s;
@@ -86,9 +109,15 @@ SLUT_FN slut_nl_lanes slut_nl_lanes_exp(slut_nl_lanes x) {
     slut_nl_lanes u = fma(odd, s, even);
     u = fma(u, s, 1.0);
     u = fma(u, s, 1.0);
+#if SLUT_NL_EXP_AVX512
+    /* vscalefpd: u·2^⌊k⌋ rounded once (mask all lanes, current rounding mode). */
+    u.lo = __builtin_ia32_scalefpd512_mask(u.lo, k.lo, u.lo, (uchar)0xff, 4);
+    u.hi = __builtin_ia32_scalefpd512_mask(u.hi, k.hi, u.hi, (uchar)0xff, 4);
+#else
     long16 j = as_long16(shifted) - as_long16(round_shift), j_half = j >> 1;
     u = u * as_double16(as_ulong16(j_half + 1023) << 52);
     u = u * as_double16(as_ulong16(j - j_half + 1023) << 52);
+#endif
     u = select(u, (slut_nl_lanes)(SLUT_HUGE_VAL), x > 0x1.62e42fe102c83p+9);
     return select(u, (slut_nl_lanes)(0.0), x < -1000.0);
 }

@@ -117,10 +117,11 @@ namespace {
 // One near-light kernel over every node of `layout` (axis 0 fastest): the arguments (out, then
 // T, g, r node buffers with their counts, the S axis — a thick table passes one layer at
 // S = +inf —, the kernel's own `extra` arguments, the refine factor), launched as work-items
-// (dim0, g, T) in work-groups (local0, 1, 1), in a few slices of g when `progress` is given.
+// (dim0, g, T padded to a multiple of local_T) in work-groups (local0, 1, local_T), in a few
+// slices of g when `progress` is given. The kernel returns at once for T nodes past T_count.
 std::vector<double> run_nearlight_kernel(Device &device, const Table &layout, const char *file, const char *name,
                                          const std::function<void(cl::Kernel &, int &)> &extra, size_t dim0,
-                                         size_t local0, const std::function<void(double)> &progress,
+                                         size_t local0, size_t local_T, const std::function<void(double)> &progress,
                                          double tolerance) {
     const bool finite_thickness = layout.axes.size() == 4;
     const int n_g = layout.axes[1].map.count, n_T = layout.axes[0].map.count;
@@ -149,11 +150,12 @@ std::vector<double> run_nearlight_kernel(Device &device, const Table &layout, co
     // without one it is a single launch: each slice ends in a wait for its slowest
     // work-items with a core idle.
     const int slices = progress ? std::min(n_g, 8) : 1, per_slice = (n_g + slices - 1) / slices;
+    const size_t global_T = (static_cast<size_t>(n_T) + local_T - 1) / local_T * local_T;
     for (int ig0 = 0; ig0 < n_g; ig0 += per_slice) {
         const int count = std::min(per_slice, n_g - ig0);
         device.queue().enqueueNDRangeKernel(kernel, cl::NDRange(0, static_cast<size_t>(ig0), 0),
-                                            cl::NDRange(dim0, static_cast<size_t>(count), static_cast<size_t>(n_T)),
-                                            cl::NDRange(local0, 1, 1));
+                                            cl::NDRange(dim0, static_cast<size_t>(count), global_T),
+                                            cl::NDRange(local0, 1, local_T));
         if (!progress) continue;
         device.queue().finish();
         progress(static_cast<double>(ig0 + count) / n_g);
@@ -178,7 +180,7 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
         return run_nearlight_kernel(
             device, layout, "nearlight_Eg.cl", "nearlight_ln_Eg",
             [phase_g](cl::Kernel &kernel, int &arg) { kernel.setArg(arg++, phase_g); }, static_cast<size_t>(n_r),
-            static_cast<size_t>(n_r), progress, tolerance);
+            static_cast<size_t>(n_r), 1, progress, tolerance);
     }
     const size_t n = layout.node_count();
     const size_t groups = static_cast<size_t>((n_r + SLUT_NL_MAX_LANES - 1) / SLUT_NL_MAX_LANES);
@@ -186,13 +188,13 @@ std::vector<double> integrate_nearlight_ln_E(Device &device, const Table &layout
     SLUT_CHECK_GE(groups * SLUT_NL_MAX_LANES, static_cast<size_t>(n_r));
     SLUT_CHECK_EQ(n, static_cast<size_t>(n_T) * n_g * n_r * n_S);
     SLUT_CHECK_LE(n_S, SLUT_NL_MAX_SWEEP);
-    // One work-item per (r group, g, T) sweeps every S node (slut_nl_E_sweep). One work-item
-    // per work-group: PoCL keeps the private arrays of every work-item of a group on one
-    // thread's stack (E alone is SLUT_NL_MAX_SWEEP × SLUT_NL_MAX_LANES doubles, 8 KiB: its
-    // automatic groups of ~2000 overflowed it), and a work-item is a whole march, so the group
-    // overhead is negligible.
-    return run_nearlight_kernel(
-        device, layout, "nearlight_E.cl", "nearlight_ln_E", [](cl::Kernel &, int &) {}, groups, 1, progress, tolerance);
+    // One work-item per (r group, g, T) sweeps every S node (slut_nl_E_sweep), in work-groups
+    // of kNearLightGroupT T nodes: few enough for PoCL's stack (it may keep the private arrays
+    // of every work-item of a group on one thread's stack; E alone is SLUT_NL_MAX_SWEEP ×
+    // SLUT_NL_MAX_LANES doubles, 8 KiB: its automatic groups of ~2000 overflowed it), enough
+    // to take the per-group dispatch out of the kernel's time.
+    return run_nearlight_kernel(device, layout, "nearlight_E.cl", "nearlight_ln_E", [](cl::Kernel &, int &) {},
+                                groups, 1, static_cast<size_t>(kNearLightGroupT), progress, tolerance);
 }
 
 namespace {

@@ -21,6 +21,13 @@ namespace scatterlut {
 // 1e-14 of refine = 1 cost E3 ~35 % more quadrature nodes (bench/README.md).
 inline constexpr double kNearLightIntegrationTolerance = 1e-11;
 
+// The isotropic near-light kernel's work-group: this many T nodes (work-items, each a whole march)
+// per group, the launch's T extent padded to a multiple of it (the kernel returns at once past
+// T_count). PoCL runs each work-group as one task of its worker threads; groups of one
+// work-item (16384 for E3 64³) cost 3–6 % of the kernel's CPU time in that dispatch
+// (bench/README.md, "the node loop's exp, second round"). Values do not depend on it.
+inline constexpr int kNearLightGroupT = 8;
+
 struct NearLightPlan {
     bool finite_thickness = false; // false: 3-D (S = ∞); true: 4-D with a slab axis q
     double T_min = 1e-3, T_max = 20.0;  // σ_t·l; loglin axis ln T + T/T_scale: log spacing below

@@ -160,69 +160,84 @@ TEST(NearLightKernel, LaneExpMatchesBuiltin) {
                                "    double16 v = vload16(i, x);\n"
                                "    vstore16(slut_nl_lanes_exp(v), i, lane);\n"
                                "    vstore16(exp(v), i, builtin);\n"
-                               "}\n";
-    cl::Program program(dev.context(), source);
-    const std::vector<cl::Device> devices = dev.context().getInfo<CL_CONTEXT_DEVICES>();
-    const std::string options = std::string("-cl-std=CL1.2 -I ") + SLUT_SOURCE_DIR + "/kernels";
-    try {
-        program.build(devices, options.c_str());
-    } catch (const cl::Error &) {
-        FAIL() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(devices[0]);
-    }
-    std::vector<double> x;
-    std::mt19937_64 rng(20261202);
-    auto uniform = [&](double a, double b, int n) {
-        std::uniform_real_distribution<double> d(a, b);
-        for (int i = 0; i < n; ++i) x.push_back(d(rng));
-    };
-    uniform(-1100.0, 720.0, 1 << 19);   // everything: overflow, normal, subnormal, zero
-    uniform(-60.0, 0.0, 1 << 19);       // the sweep's exponents −T(τ + η q)
-    uniform(-1.0, 1.0, 1 << 17);        // small |x|: the polynomial alone
-    uniform(-746.0, -707.0, 1 << 17);   // subnormal results (the two-step 2^k)
-    uniform(-1000.5, -999.5, 1 << 12);  // the zero cut-off
-    uniform(709.0, 710.5, 1 << 12);     // the overflow cut-off
-    for (int k = -1500; k <= 1100; ++k) // x/ln 2 at and next to half-integers (rint's ties)
-        for (double t : {-1.0, 0.0, 1.0}) x.push_back(std::nextafter((k + 0.5) * 0.6931471805599453, t * 1e300));
-    const double inf = std::numeric_limits<double>::infinity();
-    for (double v : {0.0, -0.0, inf, -inf, std::numeric_limits<double>::quiet_NaN(), 1e-300, -1e-300, 5e-324,
-                     -1e300, 1e300, 709.782712893384, -708.3964185322641, -745.1332191019412, -1000.0})
-        x.push_back(v);
-    while (x.size() % 16 != 0) x.push_back(0.0);
-    std::vector<double> lane(x.size()), builtin(x.size());
-    const cl::Buffer in = scatterlut::input_buffer(dev, x);
-    const cl::Buffer out_lane(dev.context(), CL_MEM_WRITE_ONLY, x.size() * sizeof(double));
-    const cl::Buffer out_builtin(dev.context(), CL_MEM_WRITE_ONLY, x.size() * sizeof(double));
-    cl::Kernel kernel(program, "lane_exp");
-    kernel.setArg(0, in);
-    kernel.setArg(1, out_lane);
-    kernel.setArg(2, out_builtin);
-    dev.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(x.size() / 16), cl::NullRange);
-    dev.queue().enqueueReadBuffer(out_lane, CL_TRUE, 0, x.size() * sizeof(double), lane.data());
-    dev.queue().enqueueReadBuffer(out_builtin, CL_TRUE, 0, x.size() * sizeof(double), builtin.data());
-    const bool pocl = dev.info().platform_name.find("Portable Computing Language") != std::string::npos;
-    size_t differing = 0, nonzero_finite = 0;
-    for (size_t i = 0; i < x.size(); ++i) {
-        const bool same = std::memcmp(&lane[i], &builtin[i], sizeof(double)) == 0 ||
-                          (std::isnan(lane[i]) && std::isnan(builtin[i]));
-        if (!same && differing++ < 5 && pocl)
-            ADD_FAILURE() << "x = " << x[i] << ": lane exp " << lane[i] << ", builtin " << builtin[i];
-        nonzero_finite += std::isfinite(builtin[i]) && builtin[i] != 0.0;
-        // An exp on any device: 2 ulps of libm's (Sleef_exp_u10 promises 1 ulp of the true value).
-        if (std::isfinite(x[i]) && x[i] > -700.0 && x[i] < 700.0) {
-            ASSERT_LE(std::fabs(lane[i] - std::exp(x[i])), 4.5e-16 * std::exp(x[i])) << "x = " << x[i];
-        } else if (std::isnan(x[i])) {
-            ASSERT_TRUE(std::isnan(lane[i]));
-        } else if (x[i] >= 710.0) {
-            ASSERT_EQ(lane[i], HUGE_VAL) << "x = " << x[i];
-        } else if (x[i] <= -1000.0) {
-            ASSERT_EQ(lane[i], 0.0) << "x = " << x[i];
+                               "}\n"
+                               "__kernel void exp_variant(__global int *avx512) { avx512[0] = SLUT_NL_EXP_AVX512; }\n";
+    // Both ways of the integer steps: the device's own (AVX-512 where the compiler targets it)
+    // and the portable one.
+    for (const char *variant : {"", " -DSLUT_NL_EXP_AVX512=0"}) {
+        SCOPED_TRACE(std::string("build options:") + variant);
+        cl::Program program(dev.context(), source);
+        const std::vector<cl::Device> devices = dev.context().getInfo<CL_CONTEXT_DEVICES>();
+        const std::string options = std::string("-cl-std=CL1.2 -I ") + SLUT_SOURCE_DIR + "/kernels" + variant;
+        try {
+            program.build(devices, options.c_str());
+        } catch (const cl::Error &) {
+            FAIL() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(devices[0]);
         }
+        std::vector<double> x;
+        std::mt19937_64 rng(20261202);
+        auto uniform = [&](double a, double b, int n) {
+            std::uniform_real_distribution<double> d(a, b);
+            for (int i = 0; i < n; ++i) x.push_back(d(rng));
+        };
+        uniform(-1100.0, 720.0, 1 << 19);   // everything: overflow, normal, subnormal, zero
+        uniform(-60.0, 0.0, 1 << 19);       // the sweep's exponents −T(τ + η q)
+        uniform(-1.0, 1.0, 1 << 17);        // small |x|: the polynomial alone
+        uniform(-746.0, -707.0, 1 << 17);   // subnormal results (the two-step 2^k)
+        uniform(-1000.5, -999.5, 1 << 12);  // the zero cut-off
+        uniform(709.0, 710.5, 1 << 12);     // the overflow cut-off
+        for (int k = -1500; k <= 1100; ++k) // x/ln 2 at and next to half-integers (rint's ties)
+            for (double t : {-1.0, 0.0, 1.0}) x.push_back(std::nextafter((k + 0.5) * 0.6931471805599453, t * 1e300));
+        const double inf = std::numeric_limits<double>::infinity();
+        for (double v : {0.0, -0.0, inf, -inf, std::numeric_limits<double>::quiet_NaN(), 1e-300, -1e-300, 5e-324,
+                         -1e300, 1e300, 709.782712893384, -708.3964185322641, -745.1332191019412, -1000.0})
+            x.push_back(v);
+        while (x.size() % 16 != 0) x.push_back(0.0);
+        std::vector<double> lane(x.size()), builtin(x.size());
+        const cl::Buffer in = scatterlut::input_buffer(dev, x);
+        const cl::Buffer out_lane(dev.context(), CL_MEM_WRITE_ONLY, x.size() * sizeof(double));
+        const cl::Buffer out_builtin(dev.context(), CL_MEM_WRITE_ONLY, x.size() * sizeof(double));
+        cl::Kernel kernel(program, "lane_exp");
+        kernel.setArg(0, in);
+        kernel.setArg(1, out_lane);
+        kernel.setArg(2, out_builtin);
+        dev.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(x.size() / 16), cl::NullRange);
+        dev.queue().enqueueReadBuffer(out_lane, CL_TRUE, 0, x.size() * sizeof(double), lane.data());
+        dev.queue().enqueueReadBuffer(out_builtin, CL_TRUE, 0, x.size() * sizeof(double), builtin.data());
+        const bool pocl = dev.info().platform_name.find("Portable Computing Language") != std::string::npos;
+        size_t differing = 0, nonzero_finite = 0;
+        for (size_t i = 0; i < x.size(); ++i) {
+            const bool same = std::memcmp(&lane[i], &builtin[i], sizeof(double)) == 0 ||
+                              (std::isnan(lane[i]) && std::isnan(builtin[i]));
+            if (!same && differing++ < 5 && pocl)
+                ADD_FAILURE() << "x = " << x[i] << ": lane exp " << lane[i] << ", builtin " << builtin[i];
+            nonzero_finite += std::isfinite(builtin[i]) && builtin[i] != 0.0;
+            // An exp on any device: 2 ulps of libm's (Sleef_exp_u10 promises 1 ulp of the true value).
+            if (std::isfinite(x[i]) && x[i] > -700.0 && x[i] < 700.0) {
+                ASSERT_LE(std::fabs(lane[i] - std::exp(x[i])), 4.5e-16 * std::exp(x[i])) << "x = " << x[i];
+            } else if (std::isnan(x[i])) {
+                ASSERT_TRUE(std::isnan(lane[i]));
+            } else if (x[i] >= 710.0) {
+                ASSERT_EQ(lane[i], HUGE_VAL) << "x = " << x[i];
+            } else if (x[i] <= -1000.0) {
+                ASSERT_EQ(lane[i], 0.0) << "x = " << x[i];
+            }
+        }
+        if (pocl) {
+            EXPECT_EQ(differing, 0u) << "of " << x.size() << " arguments";
+        }
+        // Which integer steps this build compiled (SLUT_NL_EXP_AVX512: 1 where the device's
+        // compiler targets AVX-512), so that the output says what was compared.
+        int avx512 = -1;
+        const cl::Buffer out_variant(dev.context(), CL_MEM_WRITE_ONLY, sizeof(int));
+        cl::Kernel variant_kernel(program, "exp_variant");
+        variant_kernel.setArg(0, out_variant);
+        dev.queue().enqueueNDRangeKernel(variant_kernel, cl::NullRange, cl::NDRange(1), cl::NullRange);
+        dev.queue().enqueueReadBuffer(out_variant, CL_TRUE, 0, sizeof(int), &avx512);
+        std::printf("lane exp%s (SLUT_NL_EXP_AVX512 = %d): %zu arguments (%zu finite non-zero results), %zu differ "
+                    "from the builtin (%s)\n",
+                    variant, avx512, x.size(), nonzero_finite, differing, dev.info().platform_name.c_str());
     }
-    if (pocl) {
-        EXPECT_EQ(differing, 0u) << "of " << x.size() << " arguments";
-    }
-    std::printf("lane exp: %zu arguments (%zu finite non-zero results), %zu differ from the builtin (%s)\n", x.size(),
-                nonzero_finite, differing, dev.info().platform_name.c_str());
 }
 
 TEST(NearLightIdentity, ZeroRIsTheAirlight) {
