@@ -84,6 +84,11 @@ const std::string &fog_report() {
     return dir;
 }
 
+const std::string &forward_near_light_report() {
+    static const std::string dir = run_report("forward_near_light");
+    return dir;
+}
+
 void expect_rungs_meet_their_tolerance(const std::string &csv) {
     const auto rows = read_csv(csv);
     ASSERT_GE(rows.size(), 6u) << csv;
@@ -187,6 +192,49 @@ TEST(Report, MethodsCompareTheTableWithTheClosedForms) {
     // The closed forms name the paper they come from (docs/PHYSICS.md §1.3).
     EXPECT_NE(md.find("| thin | thin-medium closed form, Gath 2008 §4.2 "), std::string::npos) << md;
     EXPECT_NE(md.find("| distant | distant-light limit, Gath 2008 eq. 5 "), std::string::npos) << md;
+}
+
+// The anisotropic near-light kinds (Henyey–Greenstein phase) on the example that asks for them
+// (examples/scenes/forward_near_light.toml: thick skin, g = 0.8; a smoke slab, g = 0.6;
+// accepted error 0.03): each kind's tolerance rungs meet their tolerance, its resolution
+// ladder has rows whose errors are finite (f16 and f32 at every count) and shrink from the
+// coarsest to the finest, the planned row and the table method hold the scene's error, and the
+// report's section names the kind.
+TEST(Report, AnisotropicNearLightLaddersHoldTheScenesError) {
+    const std::string &dir = forward_near_light_report();
+    const std::string md = read_file(dir + "/report.md");
+    for (const std::string kind : {"near_light_E3_hg_g0.8", "near_light_E4_hg_g0.6"}) {
+        SCOPED_TRACE(kind);
+        expect_rungs_meet_their_tolerance(dir + "/" + kind + "_tolerance.csv");
+        const auto res = read_csv(dir + "/" + kind + "_resolution.csv");
+        ASSERT_GE(res.size(), 6u);
+        const Row *planned = nullptr, *coarsest = nullptr, *finest = nullptr;
+        for (const Row &r : res) {
+            for (const char *key : {"table_max_rel", "radiance_max_rel", "radiance_p99_rel", "radiance_median_rel"}) {
+                EXPECT_TRUE(std::isfinite(num(r, key))) << r.at("counts") << " " << key;
+                EXPECT_GT(num(r, key), 0.0) << r.at("counts") << " " << key;
+            }
+            EXPECT_GT(num(r, "queries"), 400.0);
+            if (r.at("planned") == "1") planned = &r;
+            if (r.at("storage") != "f32") continue;
+            if (!coarsest || num(r, "bytes") < num(*coarsest, "bytes")) coarsest = &r;
+            if (!finest || num(r, "bytes") > num(*finest, "bytes")) finest = &r;
+        }
+        ASSERT_NE(planned, nullptr);
+        EXPECT_LE(num(*planned, "radiance_max_rel"), 0.03);
+        ASSERT_NE(coarsest, finest);
+        EXPECT_LT(num(*finest, "radiance_max_rel"), num(*coarsest, "radiance_max_rel"));
+        std::map<std::string, Row> m;
+        for (const Row &r : read_csv(dir + "/" + kind + "_methods.csv")) m[r.at("method")] = r;
+        ASSERT_EQ(m.size(), 4u);
+        EXPECT_EQ(m.at("exact").at("max_rel"), "reference");
+        EXPECT_TRUE(std::isfinite(num(m.at("table"), "max_rel")));
+        EXPECT_LE(num(m.at("table"), "max_rel"), 0.03);
+        EXPECT_GT(num(m.at("distant"), "median_rel"), num(m.at("table"), "median_rel"));
+        for (const char *chart : {"_tolerance.svg", "_resolution.svg", "_methods.svg"}) expect_svg(dir + "/" + kind + chart);
+        EXPECT_NE(md.find("## " + kind), std::string::npos) << md;
+    }
+    EXPECT_NE(md.find("forward_near_light.toml"), std::string::npos) << "the report names the command that produced it";
 }
 
 TEST(Report, SceneWithoutTablesSaysSo) {
