@@ -89,6 +89,21 @@ const std::string &forward_near_light_report() {
     return dir;
 }
 
+// A resolution ladder's planned row, and its coarsest and finest f32 rows (by bytes); null if absent.
+struct LadderEnds {
+    const Row *planned = nullptr, *coarsest = nullptr, *finest = nullptr;
+};
+LadderEnds ladder_ends(const std::vector<Row> &rows) {
+    LadderEnds e;
+    for (const Row &r : rows) {
+        if (r.at("planned") == "1") e.planned = &r;
+        if (r.at("storage") != "f32") continue;
+        if (!e.coarsest || num(r, "bytes") < num(*e.coarsest, "bytes")) e.coarsest = &r;
+        if (!e.finest || num(r, "bytes") > num(*e.finest, "bytes")) e.finest = &r;
+    }
+    return e;
+}
+
 void expect_rungs_meet_their_tolerance(const std::string &csv) {
     const auto rows = read_csv(csv);
     ASSERT_GE(rows.size(), 6u) << csv;
@@ -152,14 +167,8 @@ TEST(Report, ResolutionLadderBuysAccuracyAndThePlanHoldsTheScenesError) {
     const auto rows = read_csv(candle_report() + "/near_light_E3_resolution.csv");
     ASSERT_GE(rows.size(), 6u);
     std::map<std::string, std::map<std::string, Row>> by_counts; // counts → storage → row
-    const Row *planned = nullptr, *coarsest = nullptr, *finest = nullptr;
-    for (const Row &r : rows) {
-        by_counts[r.at("counts")][r.at("storage")] = r;
-        if (r.at("planned") == "1") planned = &r;
-        if (r.at("storage") != "f32") continue;
-        if (!coarsest || num(r, "bytes") < num(*coarsest, "bytes")) coarsest = &r;
-        if (!finest || num(r, "bytes") > num(*finest, "bytes")) finest = &r;
-    }
+    for (const Row &r : rows) by_counts[r.at("counts")][r.at("storage")] = r;
+    const auto [planned, coarsest, finest] = ladder_ends(rows);
     ASSERT_NE(planned, nullptr);
     EXPECT_LE(num(*planned, "radiance_max_rel"), 0.02);
     EXPECT_GT(num(*planned, "queries"), 400.0);
@@ -208,18 +217,14 @@ TEST(Report, AnisotropicNearLightLaddersHoldTheScenesError) {
         expect_rungs_meet_their_tolerance(dir + "/" + kind + "_tolerance.csv");
         const auto res = read_csv(dir + "/" + kind + "_resolution.csv");
         ASSERT_GE(res.size(), 6u);
-        const Row *planned = nullptr, *coarsest = nullptr, *finest = nullptr;
         for (const Row &r : res) {
             for (const char *key : {"table_max_rel", "radiance_max_rel", "radiance_p99_rel", "radiance_median_rel"}) {
                 EXPECT_TRUE(std::isfinite(num(r, key))) << r.at("counts") << " " << key;
                 EXPECT_GT(num(r, key), 0.0) << r.at("counts") << " " << key;
             }
             EXPECT_GT(num(r, "queries"), 400.0);
-            if (r.at("planned") == "1") planned = &r;
-            if (r.at("storage") != "f32") continue;
-            if (!coarsest || num(r, "bytes") < num(*coarsest, "bytes")) coarsest = &r;
-            if (!finest || num(r, "bytes") > num(*finest, "bytes")) finest = &r;
         }
+        const auto [planned, coarsest, finest] = ladder_ends(res);
         ASSERT_NE(planned, nullptr);
         EXPECT_LE(num(*planned, "radiance_max_rel"), 0.03);
         ASSERT_NE(coarsest, finest);
