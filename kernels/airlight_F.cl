@@ -27,7 +27,8 @@
  * Where the layer at y = 0 is thin (u ≥ slut_gs_series_u_min(w_j) for lane 0, hence all
  * lanes) the whole S_j is the large-u series Σ_k c_k(w_j)/u^{k+1} instead (slut_airlight.h:
  * ≤ 1e-16 relative there; the host passes the coefficients), and the sweep continues from it.
- * The series' coefficients are the Lorentzian's: for g ≠ 0 the host passes series_u_min = ∞.
+ * For g ≠ 0 the host passes k_g's coefficients and onset instead (slut_hg_sweep_large_u_coefficients,
+ * slut_hg_sweep_series_u_min in slut_airlight_hg.h: the same 1e-16, estimated from the terms).
  * Where the interval is short for every lane (u_7·Δ_j ≤ 2·SLUT_GS_TAYLOR_X, lane 7 the
  * largest u) the rule is its Taylor form about Δ_j/2, e^{−u Δ_j/2} Σ_k m_jk u^k
  * (slut_airlight.h: ≤ 2e-18 relative; the host passes the moments of interval j's rule):

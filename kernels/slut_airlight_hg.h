@@ -298,6 +298,52 @@ SLUT_FN double slut_hg_air_integral_large_u(double u, double tau, double eps, do
     return slut_hg_air_series_large_u(u, tau, eps, g).sum;
 }
 
+#ifndef SLUT_SHADER /* the table generator's sweep (kernels/airlight_F.cl, host/src/generate_airlight.cpp) */
+/* The same Watson series in the sweep's unscaled variable (ε̂ = 1, τ = cot w_j up to cot w_min):
+ *   S(u) = ∫_0^∞ e^{−u y} k_g(τ + y) dy ~ Σ_n c_n/u^{n+1},   c_n = k_g^{(n)}(τ) = P·a_n·n!/ρ^n,
+ * with ρ, P = (1 − g²)√R0/Q0^{3/2} and a_n (the Taylor coefficients in s = y/ρ) those of
+ * slut_hg_air_series_large_u at ε̂ = 1. At g = 0 this is the Lorentzian's
+ * c_n = (−1)^n n! sin^{n+1}w sin((n + 1)w) of slut_gs_large_u_coefficients (up to rounding).
+ * Fills c[0..n−1] (n ≤ SLUT_HG_SERIES_TERMS) and returns ρ = |τ + iβ|, the distance to k_g's
+ * nearest singularity. */
+SLUT_FN double slut_hg_sweep_large_u_coefficients(double tau, double g, int n, double *c) {
+    double r2c[SLUT_HG_SERIES_TERMS], qc[SLUT_HG_SERIES_TERMS];
+    double gm = 1.0 - g, gp = 1.0 + g;
+    double beta = fmin(1.0, gm / gp);
+    double rho = sqrt(tau * tau + beta * beta);
+    double R0 = 1.0 + tau * tau;
+    double Q0 = gm * gm + gp * gp * tau * tau;
+    slut_hg_series_pow(1.0, 2.0 * tau * rho / R0, rho * rho / R0, 0.5, n, r2c);
+    slut_hg_series_pow(1.0, 2.0 * gp * gp * tau * rho / Q0, gp * gp * rho * rho / Q0, -1.5, n, qc);
+    double factor = gm * gp * sqrt(R0) / (Q0 * sqrt(Q0)); /* P·n!/ρ^n */
+    for (int k = 0; k < n; ++k) {
+        double ak = 0.0;
+        for (int j = 0; j <= k; ++j) ak += r2c[j] * qc[k - j];
+        c[k] = factor * ak;
+        factor *= SLUT_DOUBLE(k + 1) / rho;
+    }
+    return rho;
+}
+
+/* The smallest u from which the first SLUT_GS_SERIES_TERMS terms of that series hold S to a
+ * relative `target`, from its first SLUT_HG_SERIES_TERMS coefficients c and ρ
+ * (slut_hg_sweep_large_u_coefficients): the terms n = 12 … 23 left out are each ≤ target/24 of
+ * the leading one c_0/u, and uρ ≥ 48 (slut_hg_sweep_series_u_floor) so that the terms after
+ * them keep shrinking (the n-th over the (n−1)-th ~ n/(uρ) ≤ ½). The sum's error is then
+ * ≲ target·c_0/(2u) (S ≈ c_0/u there). An estimate from the terms, not a bound:
+ * tests/kernels/test_anisotropic.cpp measures the series against the quadrature from this u
+ * on, and the generator measures every table. Logarithms, not powers: the generator calls
+ * this for every w node of a table. */
+SLUT_FN double slut_hg_sweep_series_u_floor(double rho) { return 48.0 / rho; }
+SLUT_FN double slut_hg_sweep_series_u_min(const double *c, double rho, double target) {
+    double ln_u = log(slut_hg_sweep_series_u_floor(rho));
+    double ln_scale = log(24.0 / (target * c[0])); /* |c_n|/u^{n+1} ≤ (target/24)·c_0/u ⇔ n ln u ≥ ln|c_n| + ln_scale */
+    for (int n = SLUT_GS_SERIES_TERMS; n < SLUT_HG_SERIES_TERMS; ++n)
+        if (c[n] != 0.0) ln_u = fmax(ln_u, (log(fabs(c[n])) + ln_scale) / SLUT_DOUBLE(n));
+    return exp(ln_u);
+}
+#endif /* !SLUT_SHADER */
+
 /* G̃_g(u, w) for large u (Watson's lemma above, whatever its accuracy: the generator measures
  * from which u on it holds a table's target, host/src/generate_airlight.cpp); g = 0 hands to
  * slut_gs_large_u. */

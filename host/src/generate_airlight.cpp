@@ -209,7 +209,11 @@ struct RuleSet {
     std::vector<int> begin; // n_w + 1 offsets into y and weight
 };
 
-constexpr double kDroppedEfolds = 40.0; // e^{−40} ≈ 4e-18 of the interval's first term
+constexpr double kDroppedEfolds = 40.0;
+
+// The relative error the anisotropic sweep's large-u series is held to where it replaces the
+// rule: the isotropic series' 1e-16 (slut_gs_series_u_min).
+constexpr double kSweepSeriesTarget = 1e-16; // e^{−40} ≈ 4e-18 of the interval's first term
 
 RuleSet sweep_rule_set(const std::vector<double> &tau, const std::vector<double> &delta,
                        const std::vector<double> &series_u_min, double u_lo, double u_cap, double panel_eps,
@@ -261,9 +265,10 @@ std::vector<double> taylor_moments(const std::vector<double> &tau, const std::ve
 } // namespace
 
 // The sweep of kernels/airlight_F.cl for the integrand of asymmetry g: the Lorentzian for
-// g = 0, k_g otherwise (the host's weights carry it; the kernel is the same). g ≠ 0 uses no
-// large-u series (its coefficients are the Lorentzian's: series_u_min = ∞, the rule sets
-// resolve the layer at every u instead).
+// g = 0, k_g otherwise (the host's weights carry it; the kernel is the same). The large-u
+// series likewise: the Lorentzian's coefficients and onset (slut_gs_large_u_coefficients,
+// slut_gs_series_u_min) for g = 0, k_g's (slut_hg_sweep_large_u_coefficients, onset
+// slut_hg_sweep_series_u_min at the same 1e-16) otherwise.
 std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout, double tolerance) {
     const double g = airlight_table_phase_g(layout);
     const double panel_eps = kPanelShareOfTolerance * tolerance;
@@ -296,8 +301,20 @@ std::vector<double> integrate_airlight_ln_gs(Device &device, const Table &layout
     double u_lo_max = 0; // the largest lane-0 u of any work-item
     for (int k = 0; k < items; ++k) u_lo_max = std::max(u_lo_max, u_rows[static_cast<size_t>(kLanes * k)]);
     for (size_t k = 0; k < w_nodes.size(); ++k) {
-        series_u_min[k] = (g == 0.0) ? slut_gs_series_u_min(w_nodes[k]) : HUGE_VAL;
-        if (u_lo_max >= series_u_min[k]) slut_gs_large_u_coefficients(w_nodes[k], &series_coef[k * SLUT_GS_SERIES_TERMS]);
+        double *coef = &series_coef[k * SLUT_GS_SERIES_TERMS];
+        if (g == 0.0) {
+            series_u_min[k] = slut_gs_series_u_min(w_nodes[k]);
+            if (u_lo_max >= series_u_min[k]) slut_gs_large_u_coefficients(w_nodes[k], coef);
+        } else {
+            // Where no lane-0 u reaches even the onset's floor 48/ρ the series is never used:
+            // ∞ there, no coefficients to form (most nodes near w = π/2 for g → 1, ρ → β).
+            series_u_min[k] = HUGE_VAL;
+            if (u_lo_max < slut_hg_sweep_series_u_floor(std::sqrt(tau[k] * tau[k] + singularity_beta2(g)))) continue;
+            double c[SLUT_HG_SERIES_TERMS];
+            const double rho = slut_hg_sweep_large_u_coefficients(tau[k], g, SLUT_HG_SERIES_TERMS, c);
+            series_u_min[k] = slut_hg_sweep_series_u_min(c, rho, kSweepSeriesTarget);
+            std::copy(c, c + SLUT_GS_SERIES_TERMS, coef);
+        }
     }
 
     // Rule sets for rows u ≤ cap_c = u_max/4^c: a row of small u needs no panels for a

@@ -84,6 +84,26 @@ const std::string &fog_report() {
     return dir;
 }
 
+const std::string &forward_near_light_report() {
+    static const std::string dir = run_report("forward_near_light");
+    return dir;
+}
+
+// A resolution ladder's planned row, and its coarsest and finest f32 rows (by bytes); null if absent.
+struct LadderEnds {
+    const Row *planned = nullptr, *coarsest = nullptr, *finest = nullptr;
+};
+LadderEnds ladder_ends(const std::vector<Row> &rows) {
+    LadderEnds e;
+    for (const Row &r : rows) {
+        if (r.at("planned") == "1") e.planned = &r;
+        if (r.at("storage") != "f32") continue;
+        if (!e.coarsest || num(r, "bytes") < num(*e.coarsest, "bytes")) e.coarsest = &r;
+        if (!e.finest || num(r, "bytes") > num(*e.finest, "bytes")) e.finest = &r;
+    }
+    return e;
+}
+
 void expect_rungs_meet_their_tolerance(const std::string &csv) {
     const auto rows = read_csv(csv);
     ASSERT_GE(rows.size(), 6u) << csv;
@@ -147,14 +167,8 @@ TEST(Report, ResolutionLadderBuysAccuracyAndThePlanHoldsTheScenesError) {
     const auto rows = read_csv(candle_report() + "/near_light_E3_resolution.csv");
     ASSERT_GE(rows.size(), 6u);
     std::map<std::string, std::map<std::string, Row>> by_counts; // counts → storage → row
-    const Row *planned = nullptr, *coarsest = nullptr, *finest = nullptr;
-    for (const Row &r : rows) {
-        by_counts[r.at("counts")][r.at("storage")] = r;
-        if (r.at("planned") == "1") planned = &r;
-        if (r.at("storage") != "f32") continue;
-        if (!coarsest || num(r, "bytes") < num(*coarsest, "bytes")) coarsest = &r;
-        if (!finest || num(r, "bytes") > num(*finest, "bytes")) finest = &r;
-    }
+    for (const Row &r : rows) by_counts[r.at("counts")][r.at("storage")] = r;
+    const auto [planned, coarsest, finest] = ladder_ends(rows);
     ASSERT_NE(planned, nullptr);
     EXPECT_LE(num(*planned, "radiance_max_rel"), 0.02);
     EXPECT_GT(num(*planned, "queries"), 400.0);
@@ -187,6 +201,45 @@ TEST(Report, MethodsCompareTheTableWithTheClosedForms) {
     // The closed forms name the paper they come from (docs/PHYSICS.md §1.3).
     EXPECT_NE(md.find("| thin | thin-medium closed form, Gath 2008 §4.2 "), std::string::npos) << md;
     EXPECT_NE(md.find("| distant | distant-light limit, Gath 2008 eq. 5 "), std::string::npos) << md;
+}
+
+// The anisotropic near-light kinds (Henyey–Greenstein phase) on the example that asks for them
+// (examples/scenes/forward_near_light.toml: thick skin, g = 0.8; a smoke slab, g = 0.6;
+// accepted error 0.03): each kind's tolerance rungs meet their tolerance, its resolution
+// ladder has rows whose errors are finite (f16 and f32 at every count) and shrink from the
+// coarsest to the finest, the planned row and the table method hold the scene's error, and the
+// report's section names the kind.
+TEST(Report, AnisotropicNearLightLaddersHoldTheScenesError) {
+    const std::string &dir = forward_near_light_report();
+    const std::string md = read_file(dir + "/report.md");
+    for (const std::string kind : {"near_light_E3_hg_g0.8", "near_light_E4_hg_g0.6"}) {
+        SCOPED_TRACE(kind);
+        expect_rungs_meet_their_tolerance(dir + "/" + kind + "_tolerance.csv");
+        const auto res = read_csv(dir + "/" + kind + "_resolution.csv");
+        ASSERT_GE(res.size(), 6u);
+        for (const Row &r : res) {
+            for (const char *key : {"table_max_rel", "radiance_max_rel", "radiance_p99_rel", "radiance_median_rel"}) {
+                EXPECT_TRUE(std::isfinite(num(r, key))) << r.at("counts") << " " << key;
+                EXPECT_GT(num(r, key), 0.0) << r.at("counts") << " " << key;
+            }
+            EXPECT_GT(num(r, "queries"), 400.0);
+        }
+        const auto [planned, coarsest, finest] = ladder_ends(res);
+        ASSERT_NE(planned, nullptr);
+        EXPECT_LE(num(*planned, "radiance_max_rel"), 0.03);
+        ASSERT_NE(coarsest, finest);
+        EXPECT_LT(num(*finest, "radiance_max_rel"), num(*coarsest, "radiance_max_rel"));
+        std::map<std::string, Row> m;
+        for (const Row &r : read_csv(dir + "/" + kind + "_methods.csv")) m[r.at("method")] = r;
+        ASSERT_EQ(m.size(), 4u);
+        EXPECT_EQ(m.at("exact").at("max_rel"), "reference");
+        EXPECT_TRUE(std::isfinite(num(m.at("table"), "max_rel")));
+        EXPECT_LE(num(m.at("table"), "max_rel"), 0.03);
+        EXPECT_GT(num(m.at("distant"), "median_rel"), num(m.at("table"), "median_rel"));
+        for (const char *chart : {"_tolerance.svg", "_resolution.svg", "_methods.svg"}) expect_svg(dir + "/" + kind + chart);
+        EXPECT_NE(md.find("## " + kind), std::string::npos) << md;
+    }
+    EXPECT_NE(md.find("forward_near_light.toml"), std::string::npos) << "the report names the command that produced it";
 }
 
 TEST(Report, SceneWithoutTablesSaysSo) {

@@ -69,6 +69,7 @@ const ExamplePlan kExamples[] = {
     {"fog_street.toml", {"airlight_F", "surface_G0", "surface_G50"}},
     {"candle_wax.toml", {"near_light_E3"}},
     {"smoke_slab.toml", {"near_light_E4"}},
+    {"forward_near_light.toml", {"near_light_E3_hg_g0.8", "near_light_E4_hg_g0.6"}},
     {"ocean_sun.toml", {}},
     {"empty.toml", {}},
 };

@@ -2,6 +2,8 @@
 // tests/airlight_reference.hpp), never against itself: every node of a table that
 // spans the hard corners (u = 0, u ≪ 1 with w → w_min, large u at v = 0).
 #include <cmath>
+#include <cstdio>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -50,5 +52,38 @@ TEST(AirlightKernel, UnknownDeviceIsAClearError) {
         FAIL() << "expected DeviceError";
     } catch (const scatterlut::DeviceError &e) {
         EXPECT_NE(std::string(e.what()).find("no OpenCL device matches"), std::string::npos) << e.what();
+    }
+}
+
+// The anisotropic tables (Henyey–Greenstein g, the same sweep with k_g in the weights and,
+// where lane 0's u reaches slut_hg_sweep_series_u_min, k_g's large-u series): every node of a
+// corner table (u up to 500, w down to 1e-6, so that the series replaces the rule at small w
+// and large u) against the independent long-double Gauss–Kronrod reference
+// (reference_scaled_tail_hg). The table's declared integration error holds as well.
+TEST(AirlightKernel, AnisotropicEveryNodeMatchesTheIndependentReference) {
+    scatterlut::Device device("");
+    for (double g : {0.85, 0.99, -0.5, -0.99}) {
+        scatterlut::AirlightPlan plan;
+        plan.phase_g = g;
+        plan.n_u = 97;
+        plan.n_w = 61;
+        plan.u_max = 500.0;
+        plan.w_min = 1e-6;
+        plan.storage = scatterlut::Storage::F64;
+        const scatterlut::Table t = scatterlut::generate_airlight_table(device, plan, scatterlut::Provenance{});
+        std::vector<scatterlut::NodeIndex> every;
+        for (size_t j = 0; j < static_cast<size_t>(plan.n_w); ++j)
+            for (size_t i = 0; i < static_cast<size_t>(plan.n_u); ++i) {
+                scatterlut::NodeIndex p{};
+                p[0] = i;
+                p[1] = j;
+                every.push_back(p);
+            }
+        const double worst =
+            scatterlut::measure_airlight_integration(t, every, scatterlut::IntegrationReference::IndependentGaussKronrod);
+        std::printf("g %5.2f: kernel vs the independent reference, %zu nodes: max rel err %.2e (declared %.2e)\n", g,
+                    every.size(), worst, t.accuracy.integration_max_rel);
+        EXPECT_LE(worst, 1e-12) << "g " << g;
+        EXPECT_LE(t.accuracy.integration_max_rel, 1e-12) << "g " << g;
     }
 }
