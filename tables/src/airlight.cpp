@@ -429,8 +429,9 @@ one_panel_radiance8(const slut_airlight_geometry &g) {
 // one-panel rule's six exps as one 8-lane exp where the CPU has AVX-512). The
 // same formulas (FMA contraction aside: 1e-12 against the portable path, test
 // ScalarRadianceMatchesThePortablePath). Queries outside its plain range take the portable path.
+// eight_lanes: the one-panel rule on 8 lanes (only where the CPU has AVX-512F), else on 4.
 struct AirlightScalar4 {
-    SLUT_SIMD4_TARGET static double radiance(const AirlightTable &t, const AirlightQuery &q) {
+    SLUT_SIMD4_TARGET static double radiance(const AirlightTable &t, const AirlightQuery &q, bool eight_lanes) {
         using simd4::v4d;
         // check_airlight_query's conditions as one test (it throws, naming the field, if one fails).
         const double limit = std::numeric_limits<double>::max();
@@ -481,7 +482,7 @@ struct AirlightScalar4 {
             g.optical_distance = optical_distance;
             g.scale_unattenuated = scale_unattenuated;
             g.sin_gamma = sin_gamma;
-            return has_avx512f() ? one_panel_radiance8(g) : one_panel_radiance4_inline(g);
+            return eight_lanes ? one_panel_radiance8(g) : one_panel_radiance4_inline(g);
         }
         if (!t.fast_lookup_) return t.radiance_portable(q);
         const double optical_delta = sigma_t * std::max(s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D), 0.0);
@@ -521,9 +522,16 @@ struct AirlightScalar4 {
 // (slut_airlight_from_gs, which still integrates where they would cancel).
 double AirlightTable::radiance(const AirlightQuery &q) const {
 #if SLUT_HAVE_SIMD4
-    if (simd4::available()) return AirlightScalar4::radiance(*this, q);
+    if (simd4::available()) return AirlightScalar4::radiance(*this, q, has_avx512f());
 #endif
     return radiance_portable(q);
+}
+
+double detail::airlight_radiance_four_lanes(const AirlightTable &table, const AirlightQuery &q) {
+#if SLUT_HAVE_SIMD4
+    if (simd4::available()) return AirlightScalar4::radiance(table, q, false);
+#endif
+    return table.radiance_portable(q);
 }
 
 // ------------------------------------------------------------------ batch radiance

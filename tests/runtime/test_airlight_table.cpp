@@ -441,3 +441,35 @@ TEST(AirlightTable, ScalarRadianceMatchesThePortablePath) {
         RecordProperty(table == &host_table() ? "worst_rel_f64" : "worst_rel_f32", worst_text);
     }
 }
+
+// The same path with the one-panel θ-rule on 4 lanes (one_panel_radiance4_inline), which
+// radiance() takes where the CPU has AVX2 but not AVX-512 (on an AVX-512 CPU it takes the
+// 8-lane rule, so the test above does not reach the 4-lane one): per query against the
+// portable path at the same 1e-12, zero and infinite radiance exactly; and one-panel
+// geometries among the queries (slut_airlight_theta_fits_one_panel), so that the rule runs.
+TEST(AirlightTable, FourLaneOnePanelRuleMatchesThePortablePath) {
+    std::vector<scatterlut::AirlightQuery> queries = acceptance_queries(20000, 37);
+    const std::vector<scatterlut::AirlightQuery> hard = hard_queries();
+    queries.insert(queries.end(), hard.begin(), hard.end());
+    int one_panel = 0;
+    for (const auto &q : queries) {
+        const slut_airlight_geometry g =
+            slut_airlight_setup(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
+                                std::sin(q.gamma_rad), std::cos(q.gamma_rad), q.length_m);
+        one_panel += g.kind == 0 && slut_airlight_theta_fits_one_panel(g) != 0;
+    }
+    EXPECT_GT(one_panel, 1000);
+    for (const scatterlut::AirlightTable *table : {&host_table(), &host_table_f32()}) {
+        for (const auto &q : queries) {
+            const double want = scatterlut::detail::airlight_radiance_portable(*table, q);
+            const double got = scatterlut::detail::airlight_radiance_four_lanes(*table, q);
+            if (std::isinf(want) || want == 0.0) {
+                EXPECT_EQ(got, want) << "D=" << q.distance_m << " gamma=" << q.gamma_rad << " s=" << q.length_m;
+                continue;
+            }
+            EXPECT_LE(rel_err(got, want), 1e-12) << "D=" << q.distance_m << " gamma=" << q.gamma_rad
+                                                 << " s=" << q.length_m
+                                                 << " sigma_t=" << q.sigma_s_per_m + q.sigma_a_per_m;
+        }
+    }
+}
