@@ -133,6 +133,8 @@ AirlightTable::AirlightTable(Table table) : table_(std::move(table)) {
     count_u_ = table_.axes[0].map.count;
     count_w_ = table_.axes[1].map.count;
     channels_ = table_.channels.size();
+    inv_span_u_ = 1.0 / (cache_.g1[0] - cache_.g0[0]);
+    inv_span_w_ = 1.0 / (cache_.g1[1] - cache_.g0[1]);
     fast_lookup_ = !values32_.empty() && table_.axes[0].map.warp == SLUT_WARP_LOG1P &&
                    table_.axes[1].map.warp == SLUT_WARP_ASINH_COT;
 }
@@ -406,16 +408,18 @@ bool has_avx512f() {
     }();
     return yes;
 }
+// The geometry's fields as arguments (registers), not a slut_airlight_geometry in memory.
 __attribute__((target("avx512f,avx2,fma"))) __attribute__((noinline)) double
-one_panel_radiance8(const slut_airlight_geometry &g) {
+one_panel_radiance8(double c, double cos_half, double sin_half, double tan_dv, double optical_distance,
+                    double scale_unattenuated, double sin_gamma) {
     const v8d x = {-slut_gl6_x[0], -slut_gl6_x[1], -slut_gl6_x[2], slut_gl6_x[0], slut_gl6_x[1], slut_gl6_x[2], 0.0, 0.0};
     const v8d w = {slut_gl6_w[0], slut_gl6_w[1], slut_gl6_w[2], slut_gl6_w[0], slut_gl6_w[1], slut_gl6_w[2], 0.0, 0.0};
-    const double half_len = 0.5 * g.tan_dv;
+    const double half_len = 0.5 * tan_dv;
     const v8d t = half_len * (1.0 + x);
-    const v8d e = -g.c * t / (g.cos_half - t * g.sin_half) - g.optical_distance;
+    const v8d e = -c * t / (cos_half - t * sin_half) - optical_distance;
     const v8d f = w / (1.0 + t * t) * _ZGVeN8v_exp(e);
-    return g.scale_unattenuated *
-           ((half_len / g.sin_gamma) * (((f[0] + f[4]) + (f[1] + f[5])) + ((f[2] + f[6]) + (f[3] + f[7]))));
+    return scale_unattenuated *
+           ((half_len / sin_gamma) * (((f[0] + f[4]) + (f[1] + f[5])) + ((f[2] + f[6]) + (f[3] + f[7]))));
 }
 } // namespace
 
@@ -482,7 +486,9 @@ struct AirlightScalar4 {
             g.optical_distance = optical_distance;
             g.scale_unattenuated = scale_unattenuated;
             g.sin_gamma = sin_gamma;
-            return eight_lanes ? one_panel_radiance8(g) : one_panel_radiance4_inline(g);
+            return eight_lanes ? one_panel_radiance8(c, cos_half, sin_half, tan_dv, optical_distance, scale_unattenuated,
+                                                     sin_gamma)
+                               : one_panel_radiance4_inline(g);
         }
         if (!t.fast_lookup_) return t.radiance_portable(q);
         const double optical_delta = sigma_t * std::max(s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D), 0.0);
@@ -499,9 +505,10 @@ struct AirlightScalar4 {
         const v4d logs = simd4::log4(v4d{one_plus_x_u, cot2 + roots[0], cot1 + roots[1], 1.0});
         const double goldberg = one_plus_x_u == 1.0 ? 1.0 : x_u / (one_plus_x_u - 1.0);
         const double g_u = one_plus_x_u == 1.0 ? x_u : logs[0] * goldberg;
-        const v4d units = (v4d{g_u, -logs[1], -logs[2], 1.0} - v4d{t.cache_.g0[0], t.cache_.g0[1], t.cache_.g0[1], 0.0}) /
-                          v4d{t.cache_.g1[0] - t.cache_.g0[0], t.cache_.g1[1] - t.cache_.g0[1],
-                              t.cache_.g1[1] - t.cache_.g0[1], 1.0};
+        // The unit coordinates with the spans' reciprocals (once per table: a product in place
+        // of a divide on the way to the cells; an ulp from the portable path's quotient).
+        const v4d units = (v4d{g_u, -logs[1], -logs[2], 1.0} - v4d{t.cache_.g0[0], t.cache_.g0[1], t.cache_.g0[1], 0.0}) *
+                          v4d{t.inv_span_u_, t.inv_span_w_, t.inv_span_w_, 1.0};
         const double unit_u = u >= axis_u.max ? 1.0 : units[0];
         int cell_u;
         double frac_u;

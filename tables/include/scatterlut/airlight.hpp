@@ -125,6 +125,7 @@ private:
     double u_max_ = 0;
     double w_min_ = 0;
     int count_u_ = 0, count_w_ = 0; // nodes per axis
+    double inv_span_u_ = 1, inv_span_w_ = 1; // 1/(g1 − g0) of the axes' warped ends (cache_)
     size_t channels_ = 1;
     bool fast_lookup_ = false; // values32_ present and the axes' warps LOG1P (u), ASINH_COT (w)
 };
