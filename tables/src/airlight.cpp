@@ -133,6 +133,8 @@ AirlightTable::AirlightTable(Table table) : table_(std::move(table)) {
     count_u_ = table_.axes[0].map.count;
     count_w_ = table_.axes[1].map.count;
     channels_ = table_.channels.size();
+    inv_span_u_ = 1.0 / (cache_.g1[0] - cache_.g0[0]);
+    inv_span_w_ = 1.0 / (cache_.g1[1] - cache_.g0[1]);
     fast_lookup_ = !values32_.empty() && table_.axes[0].map.warp == SLUT_WARP_LOG1P &&
                    table_.axes[1].map.warp == SLUT_WARP_ASINH_COT;
 }
@@ -406,16 +408,18 @@ bool has_avx512f() {
     }();
     return yes;
 }
+// The geometry's fields as arguments (registers), not a slut_airlight_geometry in memory.
 __attribute__((target("avx512f,avx2,fma"))) __attribute__((noinline)) double
-one_panel_radiance8(const slut_airlight_geometry &g) {
+one_panel_radiance8(double c, double cos_half, double sin_half, double tan_dv, double optical_distance,
+                    double scale_unattenuated, double sin_gamma) {
     const v8d x = {-slut_gl6_x[0], -slut_gl6_x[1], -slut_gl6_x[2], slut_gl6_x[0], slut_gl6_x[1], slut_gl6_x[2], 0.0, 0.0};
     const v8d w = {slut_gl6_w[0], slut_gl6_w[1], slut_gl6_w[2], slut_gl6_w[0], slut_gl6_w[1], slut_gl6_w[2], 0.0, 0.0};
-    const double half_len = 0.5 * g.tan_dv;
+    const double half_len = 0.5 * tan_dv;
     const v8d t = half_len * (1.0 + x);
-    const v8d e = -g.c * t / (g.cos_half - t * g.sin_half) - g.optical_distance;
+    const v8d e = -c * t / (cos_half - t * sin_half) - optical_distance;
     const v8d f = w / (1.0 + t * t) * _ZGVeN8v_exp(e);
-    return g.scale_unattenuated *
-           ((half_len / g.sin_gamma) * (((f[0] + f[4]) + (f[1] + f[5])) + ((f[2] + f[6]) + (f[3] + f[7]))));
+    return scale_unattenuated *
+           ((half_len / sin_gamma) * (((f[0] + f[4]) + (f[1] + f[5])) + ((f[2] + f[6]) + (f[3] + f[7]))));
 }
 } // namespace
 
@@ -429,8 +433,9 @@ one_panel_radiance8(const slut_airlight_geometry &g) {
 // one-panel rule's six exps as one 8-lane exp where the CPU has AVX-512). The
 // same formulas (FMA contraction aside: 1e-12 against the portable path, test
 // ScalarRadianceMatchesThePortablePath). Queries outside its plain range take the portable path.
+// eight_lanes: the one-panel rule on 8 lanes (only where the CPU has AVX-512F), else on 4.
 struct AirlightScalar4 {
-    SLUT_SIMD4_TARGET static double radiance(const AirlightTable &t, const AirlightQuery &q) {
+    SLUT_SIMD4_TARGET static double radiance(const AirlightTable &t, const AirlightQuery &q, bool eight_lanes) {
         using simd4::v4d;
         // check_airlight_query's conditions as one test (it throws, naming the field, if one fails).
         const double limit = std::numeric_limits<double>::max();
@@ -481,7 +486,9 @@ struct AirlightScalar4 {
             g.optical_distance = optical_distance;
             g.scale_unattenuated = scale_unattenuated;
             g.sin_gamma = sin_gamma;
-            return has_avx512f() ? one_panel_radiance8(g) : one_panel_radiance4_inline(g);
+            return eight_lanes ? one_panel_radiance8(c, cos_half, sin_half, tan_dv, optical_distance, scale_unattenuated,
+                                                     sin_gamma)
+                               : one_panel_radiance4_inline(g);
         }
         if (!t.fast_lookup_) return t.radiance_portable(q);
         const double optical_delta = sigma_t * std::max(s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D), 0.0);
@@ -498,9 +505,10 @@ struct AirlightScalar4 {
         const v4d logs = simd4::log4(v4d{one_plus_x_u, cot2 + roots[0], cot1 + roots[1], 1.0});
         const double goldberg = one_plus_x_u == 1.0 ? 1.0 : x_u / (one_plus_x_u - 1.0);
         const double g_u = one_plus_x_u == 1.0 ? x_u : logs[0] * goldberg;
-        const v4d units = (v4d{g_u, -logs[1], -logs[2], 1.0} - v4d{t.cache_.g0[0], t.cache_.g0[1], t.cache_.g0[1], 0.0}) /
-                          v4d{t.cache_.g1[0] - t.cache_.g0[0], t.cache_.g1[1] - t.cache_.g0[1],
-                              t.cache_.g1[1] - t.cache_.g0[1], 1.0};
+        // The unit coordinates with the spans' reciprocals (once per table: a product in place
+        // of a divide on the way to the cells; an ulp from the portable path's quotient).
+        const v4d units = (v4d{g_u, -logs[1], -logs[2], 1.0} - v4d{t.cache_.g0[0], t.cache_.g0[1], t.cache_.g0[1], 0.0}) *
+                          v4d{t.inv_span_u_, t.inv_span_w_, t.inv_span_w_, 1.0};
         const double unit_u = u >= axis_u.max ? 1.0 : units[0];
         int cell_u;
         double frac_u;
@@ -521,9 +529,16 @@ struct AirlightScalar4 {
 // (slut_airlight_from_gs, which still integrates where they would cancel).
 double AirlightTable::radiance(const AirlightQuery &q) const {
 #if SLUT_HAVE_SIMD4
-    if (simd4::available()) return AirlightScalar4::radiance(*this, q);
+    if (simd4::available()) return AirlightScalar4::radiance(*this, q, has_avx512f());
 #endif
     return radiance_portable(q);
+}
+
+double detail::airlight_radiance_four_lanes(const AirlightTable &table, const AirlightQuery &q) {
+#if SLUT_HAVE_SIMD4
+    if (simd4::available()) return AirlightScalar4::radiance(table, q, false);
+#endif
+    return table.radiance_portable(q);
 }
 
 // ------------------------------------------------------------------ batch radiance

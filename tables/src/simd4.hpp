@@ -45,8 +45,14 @@ SLUT_SIMD4_TARGET scatterlut::simd4::v4d _ZGVdN4v_expm1(scatterlut::simd4::v4d);
 
 namespace scatterlut::simd4 {
 
-// True where the CPU runs the SLUT_SIMD4_TARGET code (checked once).
-bool available();
+// Whether the CPU has AVX2 and FMA (cpuid; simd4.cpp).
+bool cpu_has_avx2_fma();
+// True where the CPU runs the SLUT_SIMD4_TARGET code: checked once, inline so that each
+// radiance call pays a load and a branch, not a call into another translation unit.
+inline bool available() {
+    static const bool yes = cpu_has_avx2_fma();
+    return yes;
+}
 
 SLUT_SIMD4_TARGET inline v4d exp4(v4d x) { return _ZGVdN4v_exp(x); }
 SLUT_SIMD4_TARGET inline v4d log4(v4d x) { return _ZGVdN4v_log(x); }

@@ -441,3 +441,40 @@ TEST(AirlightTable, ScalarRadianceMatchesThePortablePath) {
         RecordProperty(table == &host_table() ? "worst_rel_f64" : "worst_rel_f32", worst_text);
     }
 }
+
+// The same path with the one-panel θ-rule on 4 lanes (one_panel_radiance4_inline), which
+// radiance() takes where the CPU has AVX2 but not AVX-512 (on an AVX-512 CPU it takes the
+// 8-lane rule, so the test above does not reach it), per query at the same 1e-12, zero and
+// infinite radiance exactly. The reference on the one-panel geometries is the kernel's
+// scalar rule (slut_airlight_theta_integral_one_panel, libm's exp: the portable path's
+// formula where the CPU lacks AVX2; the portable path itself takes the 4-lane rule where the
+// CPU has AVX2, so it would not tell), elsewhere the portable path.
+TEST(AirlightTable, FourLaneOnePanelRuleMatchesTheScalarRule) {
+    std::vector<scatterlut::AirlightQuery> queries = acceptance_queries(20000, 37);
+    const std::vector<scatterlut::AirlightQuery> hard = hard_queries();
+    queries.insert(queries.end(), hard.begin(), hard.end());
+    for (const scatterlut::AirlightTable *table : {&host_table(), &host_table_f32()}) {
+        int one_panel = 0;
+        for (const auto &q : queries) {
+            const slut_airlight_geometry g = scatterlut::detail::airlight_query_near_end(q);
+            double want;
+            if (g.kind == 0 && slut_airlight_scale_is_plain(g, q.distance_m, q.length_m) &&
+                slut_airlight_theta_fits_one_panel(g)) {
+                want = g.scale_unattenuated * std::exp(-g.optical_distance) *
+                       (slut_airlight_theta_integral_one_panel(g.c, g.cos_half, g.sin_half, g.tan_dv) / g.sin_gamma);
+                ++one_panel;
+            } else {
+                want = scatterlut::detail::airlight_radiance_portable(*table, q);
+            }
+            const double got = scatterlut::detail::airlight_radiance_four_lanes(*table, q);
+            if (std::isinf(want) || want == 0.0) {
+                EXPECT_EQ(got, want) << "D=" << q.distance_m << " gamma=" << q.gamma_rad << " s=" << q.length_m;
+                continue;
+            }
+            EXPECT_LE(rel_err(got, want), 1e-12) << "D=" << q.distance_m << " gamma=" << q.gamma_rad
+                                                 << " s=" << q.length_m
+                                                 << " sigma_t=" << q.sigma_s_per_m + q.sigma_a_per_m;
+        }
+        EXPECT_GT(one_panel, 1000);
+    }
+}

@@ -58,6 +58,10 @@ namespace detail {
 // AirlightTable::radiance without its AVX2 + FMA path (libm and the kernels' functions
 // alone, as on CPUs without AVX2): the tests compare the two per query.
 double airlight_radiance_portable(const AirlightTable &table, const AirlightQuery &q);
+// AirlightTable::radiance's AVX2 + FMA path with the one-panel θ-rule on 4 lanes even where
+// the CPU has AVX-512 (where radiance takes the 8-lane rule): the tests compare it with the
+// portable path. The portable path where the CPU lacks AVX2 or FMA.
+double airlight_radiance_four_lanes(const AirlightTable &table, const AirlightQuery &q);
 } // namespace detail
 
 // A loaded F table (kind "airlight_F"): axis 0 u ∈ [0, u_max], axis 1 w = π/2 − v ∈
@@ -103,6 +107,7 @@ private:
     friend struct AirlightBatch;   // the batch radiance (airlight.cpp)
     friend struct AirlightScalar4; // the scalar radiance where the CPU has AVX2 and FMA (airlight.cpp)
     friend double detail::airlight_radiance_portable(const AirlightTable &table, const AirlightQuery &q);
+    friend double detail::airlight_radiance_four_lanes(const AirlightTable &table, const AirlightQuery &q);
     // radiance() without the AVX2 + FMA path: libm and the kernels' functions alone (CPUs
     // without AVX2, and the cases that path leaves: zero or divergent radiance, infinite rays,
     // scales beyond plain products, f64 tables, ends beyond the table).
@@ -120,6 +125,7 @@ private:
     double u_max_ = 0;
     double w_min_ = 0;
     int count_u_ = 0, count_w_ = 0; // nodes per axis
+    double inv_span_u_ = 1, inv_span_w_ = 1; // 1/(g1 − g0) of the axes' warped ends (cache_)
     size_t channels_ = 1;
     bool fast_lookup_ = false; // values32_ present and the axes' warps LOG1P (u), ASINH_COT (w)
 };
