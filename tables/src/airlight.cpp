@@ -472,7 +472,7 @@ struct AirlightScalar4 {
         const v4d ratios = v4d{ds, dx, ss, dy} / v4d{dx, ds, dy, ss};
         const double tan_w1 = select_le(0.0, x, ratios[0], ratios[1]);
         const double tan_dv = select_le(0.0, y, ratios[2], ratios[3]);
-        if (tan_dv <= 0.25 * w2 && c * tan_dv <= 4.0 * cos_half) { // slut_airlight_theta_fits_one_panel
+        if (slut_airlight_theta_fits_one_panel_at(tan_dv, w2, c, cos_half)) {
             slut_airlight_geometry g;
             g.c = c;
             g.cos_half = cos_half;
@@ -631,7 +631,7 @@ struct AirlightBatch {
         const v4l regular = (sigma_s > zero) & (intensity > zero) & (s > zero) & (s <= simd4::splat(SLUT_INFINITE_ABOVE)) &
                             (sin_half > zero) & (scale_unattenuated >= lo) & (scale_unattenuated <= hi) &
                             (optical_distance <= simd4::splat(300.0)) & (D >= lo) & (D <= hi) & (s >= lo) & (s <= hi);
-        const v4l fits = (tan_dv <= 0.25 * w2) & (c * tan_dv <= 4.0 * cos_half);
+        const v4l fits = SLUT_AIRLIGHT_THETA_FITS_ONE_PANEL(tan_dv, w2, c, cos_half);
         for (int l = 0; l < 4; ++l) {
             if (l > 0 && index[l] == index[0]) break; // the padding of the last block
             if (!regular[l]) {
