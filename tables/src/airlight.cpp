@@ -15,6 +15,7 @@
 
 extern "C" {
 #include "slut_airlight.h"
+#include "slut_vec3.h"
 }
 
 namespace scatterlut {
@@ -68,17 +69,14 @@ AirlightQuery airlight_query_from_points(const double viewer_m[3], const double 
     }
     require(dir_len2 > 0.0, "view direction must be non-zero");
     // γ = atan2(|d × l|, d · l): accurate at both ends, unlike acos of the dot product.
-    const double cross[3] = {view_dir[1] * to_light[2] - view_dir[2] * to_light[1],
-                             view_dir[2] * to_light[0] - view_dir[0] * to_light[2],
-                             view_dir[0] * to_light[1] - view_dir[1] * to_light[0]};
-    const double sin_part = std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]);
-    const double cos_part = view_dir[0] * to_light[0] + view_dir[1] * to_light[1] + view_dir[2] * to_light[2];
+    const double gamma = slut_vec3_angle(slut_vec3_make(view_dir[0], view_dir[1], view_dir[2]),
+                                         slut_vec3_make(to_light[0], to_light[1], to_light[2]));
     AirlightQuery q;
     q.sigma_s_per_m = sigma_s_per_m;
     q.sigma_a_per_m = sigma_a_per_m;
     q.intensity_W_per_sr = intensity_W_per_sr;
     q.distance_m = std::sqrt(distance2);
-    q.gamma_rad = std::atan2(sin_part, cos_part);
+    q.gamma_rad = gamma;
     q.length_m = length_m;
     return q;
 }
