@@ -82,6 +82,21 @@ SLUT_FN slut_surface_geometry slut_surface_geometry_make(slut_vec3 normal, slut_
     return g;
 }
 
+/* The scale of the scattered terms E_ss and S_n (see the top of this file): σ_s I0/(4π D),
+ * W/m² per unit of the dimensionless G_n, for σ_s in 1/m, I0 in W/sr, D in m (formed as
+ * σ_s·I0·(1/4π)/D, in that order: every caller gets the same bits). */
+SLUT_FN double slut_surface_scattered_scale(double sigma_s_per_m, double intensity_W_per_sr, double D) {
+    return sigma_s_per_m * intensity_W_per_sr * SLUT_INV_4PI / D;
+}
+
+/* The direct irradiance at normal incidence, W/m²: I0 e^{−T}/D² for I0 in W/sr, T = σ_t D the
+ * optical distance to the light, D in m; 0 where e^{−T} underflows (so that D → 0 there gives
+ * 0, never 0·∞). E_d is it times max(cos θ_s, 0), P_d times the lobe max(cos θ_r, 0)^n. */
+SLUT_FN double slut_surface_direct_normal(double intensity_W_per_sr, double T, double D) {
+    double light_att = exp(-T);
+    return (light_att > 0.0) ? intensity_W_per_sr * light_att / (D * D) : 0.0;
+}
+
 /* The four terms of the radiance towards the viewer, W/(m²·sr), each already attenuated by
  * e^{−σ_t D_v} and weighted by k_d/π or k_s (see the top of this file). */
 SLUT_STRUCT_BEGIN(slut_surface_terms)
@@ -111,9 +126,8 @@ SLUT_FN slut_surface_terms slut_surface_assemble(slut_surface_geometry g, double
     double sigma_t = sigma_s_per_m + sigma_a_per_m;
     double D = g.light_distance_m;
     double view = exp(-sigma_t * g.view_distance_m);
-    double light_att = exp(-sigma_t * D);
-    double direct = (light_att > 0.0) ? intensity_W_per_sr * light_att / (D * D) : 0.0; /* W/m², normal incidence */
-    double scattered = sigma_s_per_m * intensity_W_per_sr * SLUT_INV_4PI / D; /* × G: W/m² */
+    double direct = slut_surface_direct_normal(intensity_W_per_sr, sigma_t * D, D); /* W/m² */
+    double scattered = slut_surface_scattered_scale(sigma_s_per_m, intensity_W_per_sr, D); /* × G: W/m² */
     double kd = view * k_d * (1.0 / SLUT_PI);
     double ks = view * k_s_per_sr;
     /* Each product only where its factors are > 0, so that an overflowing factor (D → 0)
