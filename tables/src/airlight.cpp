@@ -470,7 +470,7 @@ struct AirlightScalar4 {
         const v4d ratios = v4d{ds, dx, ss, dy} / v4d{dx, ds, dy, ss};
         const double tan_w1 = select_le(0.0, x, ratios[0], ratios[1]);
         const double tan_dv = select_le(0.0, y, ratios[2], ratios[3]);
-        if (SLUT_AIRLIGHT_THETA_FITS_ONE_PANEL(tan_dv, w2, c, cos_half)) { // slut_airlight_theta_fits_one_panel_at
+        if (SLUT_AIRLIGHT_THETA_FITS_ONE_PANEL(tan_dv, w2, c, cos_half)) {
             slut_airlight_geometry g;
             g.c = c;
             g.cos_half = cos_half;
