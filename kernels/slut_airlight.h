@@ -562,8 +562,15 @@ SLUT_CONST_ARRAY3(slut_gl6_w, 0.467913934572691047390, 0.360761573048138607570, 
  * ρ_B^{−12} ≤ 1e-12; measured ≤ 8e-12 against slut_airlight_theta_integral on 20000 of the
  * bench's geometries and 1.3e-12 against Boost.Math on the 384 of 400 test geometries that
  * fit (tests/runtime/test_airlight_table, OnePanelThetaRuleMatchesDirectQuadrature; tolerance 1e-9). sin w2 = cos(γ/2), cos w2 = sin(γ/2). */
+/* The test on the plain numbers, t = tan dv, w2 (rad), c = 2 σ_t D sin(γ/2) and ch = cos(γ/2),
+ * as a lane-generic expression (as slut_axes.h's SLUT_WARP_X): a scalar's is a truth value,
+ * the runtime's 4-lane vectors' a lane mask (GCC's && on vectors; both sides evaluated); the
+ * runtime's fast paths (tables/src/airlight.cpp) test their plain numbers with it. One line:
+ * GLSL before 4.20 has no line continuation. */
+#define SLUT_AIRLIGHT_THETA_FITS_ONE_PANEL(t, w2, c, ch) ((t) <= 0.25 * (w2) && (c) * (t) <= 4.0 * (ch))
+/* The same for a set-up geometry: kind 0 (a finite segment to integrate) and the test above. */
 SLUT_FN int slut_airlight_theta_fits_one_panel(slut_airlight_geometry g) {
-    return (g.kind == 0 && g.tan_dv <= 0.25 * g.w2 && g.c * g.tan_dv <= 4.0 * g.cos_half) ? 1 : 0;
+    return (g.kind == 0 && SLUT_AIRLIGHT_THETA_FITS_ONE_PANEL(g.tan_dv, g.w2, g.c, g.cos_half)) ? 1 : 0;
 }
 #ifdef SLUT_SHADER
 /* The shaders' form of slut_airlight_theta_integral_one_panel below: the same nodes, weights

@@ -496,21 +496,30 @@ SLUT_FN double slut_hg_airlight_from_bracket(double sigma_s, double sigma_t, dou
 }
 
 /* Exact anisotropic airlight radiance, W/(m²·sr) for I0 in W/sr, coefficients in 1/m,
- * lengths in m (length > 1e300: an infinite ray), γ given by sin γ ≥ 0 and cos γ.
+ * lengths in m (length > 1e300: an infinite ray), γ given by its half angle: sin(γ/2) and
+ * cos(γ/2), both ≥ 0 (a caller holding γ itself takes them from γ/2 directly).
  * 0 for σ_s = 0, I0 = 0, s = 0 or σ_t D ≥ 1e300; +∞ where the ray reaches the light; never
  * NaN. Where σ_s·I0·e^{−σ_t D}/D leaves the double range the product is formed in
  * logarithms. refine = 1 is the rule (larger: the finer independent one). (In float, the
  * GPU snippet's: 1e30 for 1e300.) */
-SLUT_FN double slut_hg_airlight_radiance(double sigma_s, double sigma_a, double intensity, double distance,
-                                         double sin_gamma, double cos_gamma, double length, double g,
-                                         double refine) {
+SLUT_FN double slut_hg_airlight_radiance_half(double sigma_s, double sigma_a, double intensity, double distance,
+                                              double sin_half, double cos_half, double length, double g,
+                                              double refine) {
     double sigma_t = sigma_s + sigma_a;
     if (!(sigma_s > 0.0) || !(intensity > 0.0) || !(length > 0.0)) return 0.0;
     if (!(sigma_t * distance < SLUT_INFINITE_ABOVE)) return 0.0;
-    slut_hg_half_angle h = slut_hg_half_angles_of(sin_gamma, cos_gamma);
     double s_over_D = (length > SLUT_INFINITE_ABOVE) ? SLUT_HUGE_VAL : length / distance;
-    double B = slut_hg_airlight_bracket(sigma_t * distance, h.sin_half, h.cos_half, s_over_D, g, refine);
+    double B = slut_hg_airlight_bracket(sigma_t * distance, sin_half, cos_half, s_over_D, g, refine);
     return slut_hg_airlight_from_bracket(sigma_s, sigma_t, intensity, distance, B);
+}
+
+/* The same with γ given by sin γ ≥ 0 and cos γ (the half angles by slut_hg_half_angles_of). */
+SLUT_FN double slut_hg_airlight_radiance(double sigma_s, double sigma_a, double intensity, double distance,
+                                         double sin_gamma, double cos_gamma, double length, double g,
+                                         double refine) {
+    slut_hg_half_angle h = slut_hg_half_angles_of(sin_gamma, cos_gamma);
+    return slut_hg_airlight_radiance_half(sigma_s, sigma_a, intensity, distance, h.sin_half, h.cos_half, length, g,
+                                          refine);
 }
 
 /* ------------------------------------------------------------ closed forms (no table) */

@@ -19,8 +19,6 @@ SLUT_FN double slut_nl_sin_from_cos(double g) {
     return (a >= 1.0) ? 0.0 : sqrt((1.0 - a) * (1.0 + a));
 }
 
-/* atan(x)/x for x ≥ 0 (1 at x = 0; atan returns tiny x exactly, so no series is needed). */
-SLUT_FN double slut_nl_atanc(double x) { return (x == 0.0) ? 1.0 : atan(x) / x; }
 
 /* ∫ ĥ^{−2} dt over a segment of the ray of length len (≥ 0, may be +∞) that starts at a point
  * with ĥ² = hh2 and offset d = t + T g, w = T√(1 − g²) (all lengths in any one unit).
@@ -33,20 +31,34 @@ SLUT_FN double slut_nl_atanc(double x) { return (x == 0.0) ? 1.0 : atan(x) / x; 
  * division by w, so the limits w → 0 (g → ±1) are exact: len/(ĥ(a)(ĥ(a) + len·sign)).
  * Above π/2 the angle is ≥ π/2 and (π − atan(len·w/|den|))/w has no cancellation; it is
  * +∞ at w = 0 (the segment runs through the light: g = −1, S ≥ T).
- * Citation: elementary; the angle substitution of Sun et al. 2005 (the airlight F, §1.1). */
+ * Citation: elementary; the angle substitution of Sun et al. 2005 (the airlight F, §1.1).
+ *
+ * In lane-generic steps around the one atan (as slut_axes.h's SLUT_WARP_X): written once for
+ * the scalar function below and the runtime's 4-lane vectors of four queries
+ * (tables/src/nearlight.cpp; GCC's comparisons, ! and ?: select per lane, every operand
+ * evaluated). len, hh2, d, w, den, x, a of one type:
+ *   den = SLUT_NL_ISQ_DEN(len, hh2, d):  hh2 + len·d (d for len = ∞);
+ *   x   = SLUT_NL_ISQ_NUM(len, w)/|den|: len·w/|den| (w/|d| for len = ∞), and
+ *   a   = atan x: the caller's, so that a vector call serves four lanes (a call the compiler
+ *         does not merge, as libmvec's, goes in a variable: the macro names a twice);
+ *   ∫   = SLUT_NL_ISQ_OF_ATAN(len, den, w, x, a): 0 for len ≤ 0; den > 0: atanc(x)·(len/den)
+ *         (atanc(x)/d for len = ∞); den ≤ 0: (π − a)/w, +∞ at w = 0, and den = 0 (±0):
+ *         (π − π/2)/w = π/(2w) whatever x (0/0 where len·w underflows). Each case's
+ *         operations in a fixed order: the generator's sweep (so the default tables) depends
+ *         on them to the bit.
+ * One line each: GLSL before 4.20 has no line continuation. */
+#define SLUT_NL_ISQ_INFINITE(len) ((len) > SLUT_INFINITE_ABOVE)
+#define SLUT_NL_ISQ_DEN(len, hh2, d) (SLUT_NL_ISQ_INFINITE(len) ? (d) : (hh2) + (len) * (d))
+#define SLUT_NL_ISQ_NUM(len, w) (SLUT_NL_ISQ_INFINITE(len) ? (w) : (len) * (w))
+#define SLUT_NL_ISQ_ATANC(x, a) (((x) == 0.0) ? 1.0 : (a) / (x)) /* atan(x)/x, x ≥ 0 (atan returns tiny x exactly) */
+#define SLUT_NL_ISQ_AHEAD(len, den, atanc) (SLUT_NL_ISQ_INFINITE(len) ? (atanc) / (den) : (atanc) * ((len) / (den)))
+#define SLUT_NL_ISQ_BEHIND(den, w, a) (((w) > 0.0) ? (SLUT_PI - (((den) == 0.0) ? 0.5 * SLUT_PI : (a))) / (w) : SLUT_HUGE_VAL)
+#define SLUT_NL_ISQ_OF_ATAN(len, den, w, x, a) ((!((len) > 0.0)) ? 0.0 : ((den) > 0.0) ? SLUT_NL_ISQ_AHEAD(len, den, SLUT_NL_ISQ_ATANC(x, a)) : SLUT_NL_ISQ_BEHIND(den, w, a))
 SLUT_FN double slut_nl_inv_square_integral(double len, double hh2, double d, double w) {
     if (!(len > 0.0)) return 0.0;
-    if (len > SLUT_INFINITE_ABOVE) {
-        if (d > 0.0) return slut_nl_atanc(w / d) / d;
-        if (!(w > 0.0)) return SLUT_HUGE_VAL;
-        if (d == 0.0) return 0.5 * SLUT_PI / w;
-        return (SLUT_PI - atan(w / (-d))) / w;
-    }
-    double den = hh2 + len * d;
-    if (den > 0.0) return slut_nl_atanc(len * w / den) * (len / den);
-    if (!(w > 0.0)) return SLUT_HUGE_VAL;
-    if (den == 0.0) return 0.5 * SLUT_PI / w;
-    return (SLUT_PI - atan(len * w / (-den))) / w;
+    double den = SLUT_NL_ISQ_DEN(len, hh2, d);
+    double x = SLUT_NL_ISQ_NUM(len, w) / fabs(den);
+    return SLUT_NL_ISQ_OF_ATAN(len, den, w, x, atan(x)); /* one atan: the compiler's built-in */
 }
 
 

@@ -3,30 +3,14 @@
  *
  * Compiled as OpenCL C, as C++ (the runtime library) and, whole, as GLSL/HLSL in float (the
  * near-light snippet); written in the shared subset (kernels/slut_compat.h): vectors as the
- * struct slut_vec3 by value (the snippets convert their vec3/float3 in their glue), the
- * array form for C callers in the `#ifndef SLUT_SHADER` block.
+ * struct slut_vec3 by value (kernels/slut_vec3.h), the array form for C callers in the
+ * `#ifndef SLUT_SHADER` block.
  */
 #ifndef SLUT_NEARLIGHT_REFRACTION_H
 #define SLUT_NEARLIGHT_REFRACTION_H
 
 #include "slut_compat.h"
-
-/* A 3-vector, passed and returned by value. */
-SLUT_STRUCT_BEGIN(slut_vec3)
-    double x;
-    double y;
-    double z;
-SLUT_STRUCT_END(slut_vec3);
-
-SLUT_FN slut_vec3 slut_vec3_make(double x, double y, double z) {
-    slut_vec3 v;
-    v.x = x;
-    v.y = y;
-    v.z = z;
-    return v;
-}
-
-SLUT_FN double slut_vec3_dot(slut_vec3 a, slut_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+#include "slut_vec3.h"
 
 /* cos θ_t of the eye ray refracted into the medium, from μ_e = cos θ_i outside and
  * η = n_medium/n_outside > 0 (Snell: sin θ_t = sin θ_i/η):

@@ -10,8 +10,8 @@
  *   D_v = |viewer − P|, ω_v = (viewer − P)/D_v     (from P to the viewer)
  *   cos θ_s = n·ω_l (θ_s > π/2: the light is below the surface's horizon)
  *   ρ = 2 (n·ω_v) n − ω_v, the mirror direction of the view ray (unit);  cos θ_r = ρ·ω_l.
- * The angles are taken as atan2(|a × b|, a·b), accurate at 0 and at π (acos of a dot
- * product loses half the digits there).
+ * The angles are taken as atan2(|a × b|, a·b) (slut_vec3_angle), accurate at 0 and at π
+ * (acos of a dot product loses half the digits there).
  *
  * Radiance towards the viewer, W/(m²·sr), with T = σ_t D, I0 in W/sr, σ in 1/m:
  *   E_d   = I0 e^{−T} max(cos θ_s, 0)/D²                       direct irradiance
@@ -29,7 +29,7 @@
 #define SLUT_SURFACE_FRONTEND_H
 
 #include "slut_compat.h"
-#include "slut_nearlight_refraction.h" /* slut_vec3 */
+#include "slut_vec3.h"
 
 #define SLUT_SURF_OK 0            /* a valid geometry                                            */
 #define SLUT_SURF_VIEWER_BELOW 1  /* n·ω_v ≤ 0: the viewer sees the surface's back: radiance 0  */
@@ -46,33 +46,14 @@ SLUT_STRUCT_BEGIN(slut_surface_geometry)
     double theta_r;          /* rad, [0, π]                                   */
 SLUT_STRUCT_END(slut_surface_geometry);
 
-/* |a × b| for any a, b. */
-SLUT_FN double slut_surface_cross_length(slut_vec3 a, slut_vec3 b) {
-    double x = a.y * b.z - a.z * b.y, y = a.z * b.x - a.x * b.z, z = a.x * b.y - a.y * b.x;
-    return sqrt(x * x + y * y + z * z);
-}
-
-/* |v| without overflow or underflow of the squares (a light 1e-200 m away is not at 0). */
-SLUT_FN double slut_surface_length(slut_vec3 v) {
-    double m = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
-    if (!(m > 0.0) || !(m < SLUT_REAL_MAX)) return m; /* 0, +inf or NaN */
-    double x = v.x / m, y = v.y / m, z = v.z / m;
-    return m * sqrt(x * x + y * y + z * z);
-}
-
-/* The angle between a and b (any lengths > 0), in [0, π]: atan2(|a × b|, a·b). */
-SLUT_FN double slut_surface_angle(slut_vec3 a, slut_vec3 b) {
-    return atan2(slut_surface_cross_length(a, b), slut_vec3_dot(a, b));
-}
-
 /* The geometry of a surface point (see the top of this file): normal = unit normal n,
  * light_rel_m = light − P, viewer_rel_m = viewer − P (m). */
 SLUT_FN slut_surface_geometry slut_surface_geometry_make(slut_vec3 normal, slut_vec3 light_rel_m,
                                                          slut_vec3 viewer_rel_m) {
     slut_surface_geometry g;
     g.kind = SLUT_SURF_OK;
-    g.light_distance_m = slut_surface_length(light_rel_m);
-    g.view_distance_m = slut_surface_length(viewer_rel_m);
+    g.light_distance_m = slut_vec3_length(light_rel_m);
+    g.view_distance_m = slut_vec3_length(viewer_rel_m);
     g.cos_theta_s = 0.0;
     g.theta_s = 0.0;
     g.cos_theta_r = 0.0;
@@ -89,7 +70,7 @@ SLUT_FN slut_surface_geometry slut_surface_geometry_make(slut_vec3 normal, slut_
     slut_vec3 wl = slut_vec3_make(light_rel_m.x / l, light_rel_m.y / l, light_rel_m.z / l);
     slut_vec3 wv = slut_vec3_make(viewer_rel_m.x / v, viewer_rel_m.y / v, viewer_rel_m.z / v);
     g.cos_theta_s = slut_clamp(slut_vec3_dot(normal, wl), -1.0, 1.0);
-    g.theta_s = slut_surface_angle(normal, wl);
+    g.theta_s = slut_vec3_angle(normal, wl);
     double nv = slut_vec3_dot(normal, wv);
     if (!(nv > 0.0)) {
         g.kind = SLUT_SURF_VIEWER_BELOW;
@@ -97,8 +78,23 @@ SLUT_FN slut_surface_geometry slut_surface_geometry_make(slut_vec3 normal, slut_
     }
     slut_vec3 rho = slut_vec3_make(2.0 * nv * normal.x - wv.x, 2.0 * nv * normal.y - wv.y, 2.0 * nv * normal.z - wv.z);
     g.cos_theta_r = slut_clamp(slut_vec3_dot(rho, wl), -1.0, 1.0);
-    g.theta_r = slut_surface_angle(rho, wl);
+    g.theta_r = slut_vec3_angle(rho, wl);
     return g;
+}
+
+/* The scale of the scattered terms E_ss and S_n (see the top of this file): σ_s I0/(4π D),
+ * W/m² per unit of the dimensionless G_n, for σ_s in 1/m, I0 in W/sr, D in m (formed as
+ * σ_s·I0·(1/4π)/D, in that order: every caller gets the same bits). */
+SLUT_FN double slut_surface_scattered_scale(double sigma_s_per_m, double intensity_W_per_sr, double D) {
+    return sigma_s_per_m * intensity_W_per_sr * SLUT_INV_4PI / D;
+}
+
+/* The direct irradiance at normal incidence, W/m²: I0 e^{−T}/D² for I0 in W/sr, T = σ_t D the
+ * optical distance to the light, D in m; 0 where e^{−T} underflows (so that D → 0 there gives
+ * 0, never 0·∞). E_d is it times max(cos θ_s, 0), P_d times the lobe max(cos θ_r, 0)^n. */
+SLUT_FN double slut_surface_direct_normal(double intensity_W_per_sr, double T, double D) {
+    double light_att = exp(-T);
+    return (light_att > 0.0) ? intensity_W_per_sr * light_att / (D * D) : 0.0;
 }
 
 /* The four terms of the radiance towards the viewer, W/(m²·sr), each already attenuated by
@@ -130,9 +126,8 @@ SLUT_FN slut_surface_terms slut_surface_assemble(slut_surface_geometry g, double
     double sigma_t = sigma_s_per_m + sigma_a_per_m;
     double D = g.light_distance_m;
     double view = exp(-sigma_t * g.view_distance_m);
-    double light_att = exp(-sigma_t * D);
-    double direct = (light_att > 0.0) ? intensity_W_per_sr * light_att / (D * D) : 0.0; /* W/m², normal incidence */
-    double scattered = sigma_s_per_m * intensity_W_per_sr * SLUT_INV_4PI / D; /* × G: W/m² */
+    double direct = slut_surface_direct_normal(intensity_W_per_sr, sigma_t * D, D); /* W/m² */
+    double scattered = slut_surface_scattered_scale(sigma_s_per_m, intensity_W_per_sr, D); /* × G: W/m² */
     double kd = view * k_d * (1.0 / SLUT_PI);
     double ks = view * k_s_per_sr;
     /* Each product only where its factors are > 0, so that an overflowing factor (D → 0)

@@ -15,6 +15,7 @@
 
 extern "C" {
 #include "slut_airlight.h"
+#include "slut_vec3.h"
 }
 
 namespace scatterlut {
@@ -68,17 +69,14 @@ AirlightQuery airlight_query_from_points(const double viewer_m[3], const double 
     }
     require(dir_len2 > 0.0, "view direction must be non-zero");
     // γ = atan2(|d × l|, d · l): accurate at both ends, unlike acos of the dot product.
-    const double cross[3] = {view_dir[1] * to_light[2] - view_dir[2] * to_light[1],
-                             view_dir[2] * to_light[0] - view_dir[0] * to_light[2],
-                             view_dir[0] * to_light[1] - view_dir[1] * to_light[0]};
-    const double sin_part = std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]);
-    const double cos_part = view_dir[0] * to_light[0] + view_dir[1] * to_light[1] + view_dir[2] * to_light[2];
+    const double gamma = slut_vec3_angle(slut_vec3_make(view_dir[0], view_dir[1], view_dir[2]),
+                                         slut_vec3_make(to_light[0], to_light[1], to_light[2]));
     AirlightQuery q;
     q.sigma_s_per_m = sigma_s_per_m;
     q.sigma_a_per_m = sigma_a_per_m;
     q.intensity_W_per_sr = intensity_W_per_sr;
     q.distance_m = std::sqrt(distance2);
-    q.gamma_rad = std::atan2(sin_part, cos_part);
+    q.gamma_rad = gamma;
     q.length_m = length_m;
     return q;
 }
@@ -477,7 +475,7 @@ struct AirlightScalar4 {
         const v4d ratios = v4d{ds, dx, ss, dy} / v4d{dx, ds, dy, ss};
         const double tan_w1 = select_le(0.0, x, ratios[0], ratios[1]);
         const double tan_dv = select_le(0.0, y, ratios[2], ratios[3]);
-        if (tan_dv <= 0.25 * w2 && c * tan_dv <= 4.0 * cos_half) { // slut_airlight_theta_fits_one_panel
+        if (SLUT_AIRLIGHT_THETA_FITS_ONE_PANEL(tan_dv, w2, c, cos_half)) {
             slut_airlight_geometry g;
             g.c = c;
             g.cos_half = cos_half;
@@ -646,7 +644,7 @@ struct AirlightBatch {
         const v4l regular = (sigma_s > zero) & (intensity > zero) & (s > zero) & (s <= simd4::splat(SLUT_INFINITE_ABOVE)) &
                             (sin_half > zero) & (scale_unattenuated >= lo) & (scale_unattenuated <= hi) &
                             (optical_distance <= simd4::splat(300.0)) & (D >= lo) & (D <= hi) & (s >= lo) & (s <= hi);
-        const v4l fits = (tan_dv <= 0.25 * w2) & (c * tan_dv <= 4.0 * cos_half);
+        const v4l fits = SLUT_AIRLIGHT_THETA_FITS_ONE_PANEL(tan_dv, w2, c, cos_half);
         for (int l = 0; l < 4; ++l) {
             if (l > 0 && index[l] == index[0]) break; // the padding of the last block
             if (!regular[l]) {

@@ -16,17 +16,12 @@ namespace {
 
 using detail::require; // require.hpp
 
-// The anisotropic airlight of one channel (q validated, phase_g ≠ 0).
+// The anisotropic airlight of one channel (q validated, phase_g ≠ 0): the kernel's
+// (slut_hg_airlight_radiance_half) with the half angle taken from γ/2 itself.
 double airlight_hg(const AirlightQuery &q, double phase_g) {
     const double half = std::fmin(0.5 * q.gamma_rad, SLUT_PIO2_HI);
-    const double sin_half = std::sin(half), cos_half = std::cos(half);
-    const double sigma_t = q.sigma_s_per_m + q.sigma_a_per_m;
-    if (!(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0)) return 0.0;
-    if (!(sigma_t * q.distance_m < 1e300)) return 0.0;
-    const double s_over_D = (q.length_m > 1e300) ? HUGE_VAL : q.length_m / q.distance_m;
-    return airlight_radiance_from_bracket(
-        q, sigma_t * q.distance_m,
-        slut_hg_airlight_bracket(sigma_t * q.distance_m, sin_half, cos_half, s_over_D, phase_g, 1.0));
+    return slut_hg_airlight_radiance_half(q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m,
+                                          std::sin(half), std::cos(half), q.length_m, phase_g, 1.0);
 }
 
 // The near light of one channel (q validated, phase_g ≠ 0): the parameters and the exit's

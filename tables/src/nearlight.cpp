@@ -206,10 +206,10 @@ double NearLightTable::radiance(const NearLightQuery &q) const {
 // queries are gathered together. The value base takes the kernel's lane-generic expressions
 // (SLUT_NL_THIN_*, SLUT_NL_BASE_OF_THIN) and the axis warps slut_axes.h's (SLUT_WARP_X,
 // SLUT_WARP_ARG, SLUT_WARPED_GIVEN, SLUT_UNIT_OF_WARPED: slut_unit_from_warped_runtime's
-// steps); slut_nl_inv_square_integral is restated lane-wise (why: at inv_square_integral4);
-// the tests compare every query with the scalar call. Queries the vectors do not serve (zero
-// radiance, the light at the entry point, T = 0, outside the table, an axis warp without a
-// vector form) take the scalar radiance(q).
+// steps) and slut_nl_inv_square_integral's (SLUT_NL_ISQ_*); the tests compare every query with
+// the scalar call. Queries the vectors do not serve (zero radiance, the light at the entry
+// point, T = 0, outside the table, an axis warp without a vector form) take the scalar
+// radiance(q).
 struct NearLightBatch {
     using v4d = simd4::v4d;
     using v4l = simd4::v4l;
@@ -218,31 +218,13 @@ struct NearLightBatch {
     const NearLightQuery *queries;
     double *out;
 
-    // slut_nl_inv_square_integral(len, hh2, d, w) lane-wise. One atan serves both of its
-    // branches: x = num/|den| with num = len·w (w for len = ∞) and den = hh2 + len·d (d for
-    // len = ∞); den > 0: atanc(x)·len/den (1/den for len = ∞); den ≤ 0: (π − atan x)/w, +∞ at
-    // w = 0 (den = 0 gives x = ∞, atan x = π/2: π/(2w), as the scalar form's own branch).
-    // Why a restatement and not the kernel's code: the kernel form branches (five cases, each
-    // with its own order of operations, which the default tables depend on to the bit through
-    // the sweep's H), so lane by lane it costs a branchy scalar pass per lane around the vector
-    // atan. Measured with the kernel form split in two steps around one vector atan (argument,
-    // then the integral from atan x) instead of these selects: BM_NearLightRadiance/4 took
-    // 237-249 ns of CPU per query against 154-156 ns (medians of 3 repetitions, two
-    // interleaved rounds, `build/scatterlut_bench --benchmark_filter=BM_NearLightRadiance
-    // --benchmark_repetitions=3`; /3, which does not come here, 97-105 ns in both). The tests
-    // compare every vector query with the scalar path.
+    // slut_nl_inv_square_integral(len, hh2, d, w) lane-wise: the kernel's lane-generic steps
+    // (SLUT_NL_ISQ_*, kernels/slut_nearlight_closed.h) around one vector atan. The tests compare
+    // every vector query with the scalar path.
     SLUT_SIMD4_TARGET static v4d inv_square_integral4(v4d len, v4d hh2, v4d d, v4d w) {
-        const v4d zero = simd4::splat(0.0), one = simd4::splat(1.0);
-        const v4l infinite = len > SLUT_INFINITE_ABOVE;
-        const v4d len_eff = simd4::select(infinite, one, len);
-        const v4d num = len_eff * w;
-        const v4d den = simd4::select(infinite, d, hh2 + len * d);
-        const v4l ahead = den > zero;
-        const v4d x = num / simd4::select(ahead, den, -den);
-        const v4d a = simd4::atan4(x);
-        const v4d forward = simd4::select(x == zero, one, a / x) * (len_eff / den);
-        const v4d backward = simd4::select(w > zero, (SLUT_PI - a) / w, simd4::splat(HUGE_VAL));
-        return simd4::select(len > zero, simd4::select(ahead, forward, backward), zero);
+        const v4d den = SLUT_NL_ISQ_DEN(len, hh2, d);
+        const v4d x = SLUT_NL_ISQ_NUM(len, w) / simd4::abs4(den), a = simd4::atan4(x); // a once: the
+        return SLUT_NL_ISQ_OF_ATAN(len, den, w, x, a); // macro names it twice, libmvec's call is not CSE'd
     }
 
     // slut_unit_from_warped_runtime for four queries on one axis (slut_axes.h's lane-generic

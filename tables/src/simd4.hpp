@@ -69,6 +69,8 @@ SLUT_SIMD4_TARGET inline v4d splat(double x) { return v4d{x, x, x, x}; }
 SLUT_SIMD4_TARGET inline v4d select(v4l mask, v4d if_true, v4d if_false) {
     return _mm256_blendv_pd(if_false, if_true, _mm256_castsi256_pd(__m256i(mask)));
 }
+// |x| lane-wise (the sign bit cleared: |−0| = +0, as fabs).
+SLUT_SIMD4_TARGET inline v4d abs4(v4d x) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), x); }
 SLUT_SIMD4_TARGET inline v4d min4(v4d a, v4d b) { return _mm256_min_pd(a, b); }
 SLUT_SIMD4_TARGET inline v4d max4(v4d a, v4d b) { return _mm256_max_pd(a, b); }
 SLUT_SIMD4_TARGET inline v4d load4(const double *p) { return _mm256_loadu_pd(p); }

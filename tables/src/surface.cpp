@@ -10,6 +10,7 @@
 
 extern "C" {
 #include "slut_surface.h"
+#include "slut_surface_frontend.h" /* slut_surface_scattered_scale */
 }
 
 namespace scatterlut {
@@ -128,7 +129,7 @@ double surface_G_exact(int exponent, double optical_distance, double theta_rad) 
 
 double surface_irradiance_exact(const SurfaceQuery &q) {
     check_surface_query(q);
-    double prefactor = q.sigma_s_per_m * q.intensity_W_per_sr / (4.0 * SLUT_PI * q.distance_m);
+    double prefactor = slut_surface_scattered_scale(q.sigma_s_per_m, q.intensity_W_per_sr, q.distance_m);
     if (prefactor == 0.0) return 0.0;
     double T = (q.sigma_s_per_m + q.sigma_a_per_m) * q.distance_m;
     return prefactor * surface_G_exact(1, T, q.theta_rad);
@@ -136,7 +137,7 @@ double surface_irradiance_exact(const SurfaceQuery &q) {
 
 double surface_specular_exact(const SurfaceQuery &q, int exponent) {
     check_surface_query(q);
-    double prefactor = q.sigma_s_per_m * q.intensity_W_per_sr / (4.0 * SLUT_PI * q.distance_m);
+    double prefactor = slut_surface_scattered_scale(q.sigma_s_per_m, q.intensity_W_per_sr, q.distance_m);
     if (prefactor == 0.0) {
         require(exponent >= 1 && exponent <= kSurfaceMaxExponent,
                 "exponent must be an integer in [1, " + std::to_string(kSurfaceMaxExponent) + "]");
@@ -148,7 +149,7 @@ double surface_specular_exact(const SurfaceQuery &q, int exponent) {
 
 double surface_irradiance_no_extinction(const SurfaceQuery &q) {
     check_surface_query(q);
-    double prefactor = q.sigma_s_per_m * q.intensity_W_per_sr / (4.0 * SLUT_PI * q.distance_m);
+    double prefactor = slut_surface_scattered_scale(q.sigma_s_per_m, q.intensity_W_per_sr, q.distance_m);
     return prefactor * slut_surface_G0_no_extinction(std::min(q.theta_rad, SLUT_PI));
 }
 

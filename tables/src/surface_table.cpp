@@ -11,6 +11,7 @@
 
 extern "C" {
 #include "slut_surface_table.h"
+#include "slut_surface_frontend.h" /* slut_surface_scattered_scale */
 }
 
 namespace scatterlut {
@@ -185,7 +186,7 @@ double SurfaceTable::specular(const SurfaceQuery &q) const {
     check_surface_query(q);
     if (q.sigma_s_per_m == 0.0 || q.intensity_W_per_sr == 0.0) return 0.0;
     const double T = (q.sigma_s_per_m + q.sigma_a_per_m) * q.distance_m;
-    return q.sigma_s_per_m * q.intensity_W_per_sr / (4.0 * SLUT_PI * q.distance_m) *
+    return slut_surface_scattered_scale(q.sigma_s_per_m, q.intensity_W_per_sr, q.distance_m) *
            G(T, std::fmin(q.theta_rad, SLUT_PI));
 }
 

@@ -175,7 +175,8 @@ scatterlut::NearLightQuery random_medium_query(std::mt19937_64 &rng, double inte
 // exp/expm1/log/atan where the scalar path has libm's), for batch sizes around the 4-lane
 // blocks, on the default thick and finite tables (f32: the float copy) and the small f64 ones,
 // over thick and finite slabs in and out of each table, with refraction and Fresnel on some,
-// a light below the plane, zero length, no scattering and the light at the entry point (+inf).
+// a light below the plane, zero length, no scattering, the light at the entry point (+inf) and
+// g = +0 exactly (the eye ray perpendicular to the light direction).
 TEST(NearLightTable, BatchMatchesScalarPerQuery) {
     std::mt19937_64 rng(31);
     std::uniform_real_distribution<double> U(0.0, 1.0);
@@ -198,6 +199,12 @@ TEST(NearLightTable, BatchMatchesScalarPerQuery) {
         if (k % 7 == 3) {
             q.eta = 1.33;
             q.fresnel = (k % 14 == 3);
+        }
+        if (k % 101 == 5) { // g = +0 exactly (e·l = −ls² + ls²): the H integral's den = 0 case (π/(2w))
+            const double h = std::sqrt(0.5);
+            q.eye_dir[0] = h, q.eye_dir[1] = 0.0, q.eye_dir[2] = h;
+            q.light_rel_m[0] = -l * h, q.light_rel_m[1] = 0.0, q.light_rel_m[2] = l * h;
+            q.eta = 1.0;
         }
         if (k % 97 == 11) q.length_m = 0.0;
         if (k % 97 == 12) q.sigma_s_per_m = 0.0;

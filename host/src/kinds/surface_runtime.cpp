@@ -17,6 +17,10 @@
 #include "scatterlut/surface.hpp"
 #include "scatterlut/surface_table.hpp"
 
+extern "C" {
+#include "slut_surface_frontend.h" // slut_surface_direct_normal (Sun et al. 2005's direct terms)
+}
+
 namespace scatterlut {
 namespace {
 
@@ -60,8 +64,8 @@ void answer_surface(const nlohmann::json &q, nlohmann::json &out, const EvalTabl
     if (const SurfaceTable *table = table_serving(tables, 1, T)) eval_put(out, "table", table->irradiance(s));
     else out["table"] = nullptr;
     eval_put(out, "no_extinction", surface_irradiance_no_extinction(s));
-    eval_put(out, "direct", s.intensity_W_per_sr * std::exp(-T) * std::fmax(std::cos(s.theta_rad), 0.0) /
-                                (s.distance_m * s.distance_m));
+    eval_put(out, "direct",
+             slut_surface_direct_normal(s.intensity_W_per_sr, T, s.distance_m) * std::fmax(std::cos(s.theta_rad), 0.0));
 }
 
 // "surface_specular": S_n exact, from the exponent-n table, and the direct lobe.
@@ -72,8 +76,8 @@ void answer_surface_specular(const nlohmann::json &q, nlohmann::json &out, const
     const double T = (s.sigma_s_per_m + s.sigma_a_per_m) * s.distance_m;
     if (const SurfaceTable *table = table_serving(tables, n, T)) eval_put(out, "table", table->specular(s));
     else out["table"] = nullptr;
-    eval_put(out, "direct", s.intensity_W_per_sr * std::exp(-T) * std::pow(std::fmax(std::cos(s.theta_rad), 0.0), n) /
-                                (s.distance_m * s.distance_m));
+    eval_put(out, "direct", slut_surface_direct_normal(s.intensity_W_per_sr, T, s.distance_m) *
+                                std::pow(std::fmax(std::cos(s.theta_rad), 0.0), n));
 }
 
 } // namespace
