@@ -2,6 +2,7 @@
 
 #include "require.hpp"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 #include "scatterlut/io.hpp"
 #include "sampler_cell.hpp"
 #include "scatterlut/sampler.hpp"
+#include "angle_over_sine.hpp"
 #include "nearlight_query.hpp"
 #include "simd4.hpp"
 
@@ -22,9 +24,36 @@ namespace {
 
 using detail::require; // require.hpp
 
+// |v|² = 1 within 1e-9. The norm by explicit fma: the same double in the check below and in
+// the scalar radiance's fast path (compiled for FMA, where the compiler would contract a
+// written-out sum there and not here), so that a query at the tolerance's edge is accepted
+// or refused by both.
 bool unit_vector(const double *v) {
-    const double n2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    const double n2 = std::fma(v[0], v[0], std::fma(v[1], v[1], v[2] * v[2]));
     return std::fabs(n2 - 1.0) < 1e-9;
+}
+
+// check_near_light_query's conditions, each with the message it throws; NaN fails every one.
+// The check takes them one by one; the scalar radiance's fast path all at once (one branch).
+struct QueryCondition {
+    bool holds;
+    const char *message;
+};
+inline std::array<QueryCondition, 10> query_conditions(const NearLightQuery &q) {
+    constexpr double largest = std::numeric_limits<double>::max();
+    const auto finite_nonnegative = [](double x) -> bool { return (x >= 0.0) & (x <= largest); };
+    const auto finite_positive = [](double x) -> bool { return (x > 0.0) & (x <= largest); };
+    const auto finite = [](double x) -> bool { return std::fabs(x) <= largest; };
+    return {{{finite_nonnegative(q.sigma_s_per_m), "sigma_s must be finite and >= 0 (1/m)"},
+             {finite_nonnegative(q.sigma_a_per_m), "sigma_a must be finite and >= 0 (1/m)"},
+             {finite_nonnegative(q.intensity_W_per_sr), "intensity must be finite and >= 0 (W/sr)"},
+             {q.length_m >= 0.0, "length must be >= 0 (m; inf for a thick medium)"},
+             {unit_vector(q.normal), "normal must be a unit vector"},
+             {unit_vector(q.eye_dir), "eye_dir must be a unit vector"},
+             {finite_positive(q.eta), "eta (relative index of refraction) must be finite and > 0"},
+             {finite(q.light_rel_m[0]), "light_pos must be finite"},
+             {finite(q.light_rel_m[1]), "light_pos must be finite"},
+             {finite(q.light_rel_m[2]), "light_pos must be finite"}}};
 }
 
 using detail::near_light_exit_transmittance;
@@ -63,15 +92,10 @@ double detail::near_light_exit_transmittance(const NearLightQuery &q) {
     return slut_exit_transmittance(vec3(q.normal), vec3(q.eye_dir), q.eta, q.fresnel ? 1 : 0);
 }
 
+double detail::near_light_angle_over_sine(double g, double sin_g) { return angle_over_sine(g, sin_g); }
+
 void check_near_light_query(const NearLightQuery &q) {
-    require(q.sigma_s_per_m >= 0.0 && std::isfinite(q.sigma_s_per_m), "sigma_s must be finite and >= 0 (1/m)");
-    require(q.sigma_a_per_m >= 0.0 && std::isfinite(q.sigma_a_per_m), "sigma_a must be finite and >= 0 (1/m)");
-    require(q.intensity_W_per_sr >= 0.0 && std::isfinite(q.intensity_W_per_sr), "intensity must be finite and >= 0 (W/sr)");
-    require(q.length_m >= 0.0, "length must be >= 0 (m; inf for a thick medium)");
-    require(unit_vector(q.normal), "normal must be a unit vector");
-    require(unit_vector(q.eye_dir), "eye_dir must be a unit vector");
-    require(q.eta > 0.0 && std::isfinite(q.eta), "eta (relative index of refraction) must be finite and > 0");
-    for (int k = 0; k < 3; ++k) require(std::isfinite(q.light_rel_m[k]), "light_pos must be finite");
+    for (const QueryCondition &c : query_conditions(q)) require(c.holds, c.message);
 }
 
 NearLightParams near_light_params(const NearLightQuery &q) {
@@ -359,10 +383,13 @@ struct NearLightBatch {
     // One 3-D query (the scalar radiance): the general path's arithmetic (E's unit coordinates
     // and cell, H, slut_nl_assemble) with the three axis warps as one vector call
     // (units3) and in an order that lets the CPU overlap the cell's memory latency with H (the
-    // corners gathered, then H's atan, then the lerps): the same values as assemble(q, p,
-    // E(...)) to libmvec's log and atan against libm's, FMA contraction and the assembly's
-    // order (E last). False (nothing computed) where that path must
-    // answer: outside the table, T = 0, zero radiance, the light at the entry point, f64 values.
+    // corners gathered, then H, then the lerps), H = slut_nl_H_scaled(g, ∞) as θ/sin θ in one
+    // divide (angle_over_sine.hpp; with libmvec's 4-lane atan and the three vector divides
+    // around it the call took 1.02–1.04× the time: 6 interleaved rounds of
+    // `scatterlut_bench --benchmark_filter=NearLightRadiance/3`, a 2-core AMD EPYC (Zen) VM):
+    // the same values as assemble(q, p, E(...)) to libmvec's log against libm's, the atan's
+    // ≤ 4 ulp, FMA contraction and the assembly's order (E last). False (nothing computed)
+    // where that path must answer: outside the table, T = 0, zero radiance, the light at the entry point, f64 values.
     SLUT_SIMD4_TARGET static bool e3_radiance(const NearLightTable &t, const NearLightQuery &q, const slut_nl_params &p,
                                               double *L) {
         if (t.values32_.empty() || !(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0) ||
@@ -372,11 +399,7 @@ struct NearLightBatch {
         if (!units3(t, p.T, p.g, p.r, unit)) return false;
         double corner[8], frac[3];
         detail::gather_cell<3>(t.table_, t.values32_.data(), unit, 0, corner, frac);
-        // slut_nl_H_scaled(g, ∞) with libmvec's atan (lane 0 of inv_square_integral4): the
-        // scalar libm atan was 13 % of the call's samples in `perf record`, the vector one
-        // about half that.
-        const double H_scaled = inv_square_integral4(simd4::splat(HUGE_VAL), simd4::splat(1.0), simd4::splat(p.g),
-                                                     simd4::splat(slut_nl_sin_from_cos(p.g)))[0];
+        const double H_scaled = detail::angle_over_sine(p.g, slut_nl_sin_from_cos(p.g));
         // slut_nl_assemble_given_H with E = 1, times E: the assembly's multiplies and divide
         // run beside the cell's loads and the decoding exp instead of after them.
         const double scale = slut_nl_assemble_given_H(p, q.sigma_s_per_m, q.intensity_W_per_sr, q.length_m,
@@ -429,21 +452,15 @@ struct NearLightBatch {
 
 namespace {
 // The scalar radiance where the CPU has AVX2 and FMA, from the query to the radiance in one
-// function compiled for them: check_near_light_query's conditions as one test, the
+// function compiled for them: query_conditions (check_near_light_query's) as one test, the
 // front-end (slut_nl_params_seen) inlined, then e3_radiance or e4_radiance. False (nothing
 // computed) where NearLightTable::radiance's general path must answer: a query that fails a
 // check (that path throws, naming the field), no light reaching the medium, the cases
 // e3_radiance and e4_radiance leave. Flattened: the front-end and the table's checks inline
 // (as calls they were ~10 % of the call's samples in `perf record`).
 SLUT_SIMD4_TARGET __attribute__((flatten)) bool radiance_simd(const NearLightTable &table, const NearLightQuery &q, double *L) {
-    const double limit = std::numeric_limits<double>::max();
-    const double n2 = q.normal[0] * q.normal[0] + q.normal[1] * q.normal[1] + q.normal[2] * q.normal[2];
-    const double e2 = q.eye_dir[0] * q.eye_dir[0] + q.eye_dir[1] * q.eye_dir[1] + q.eye_dir[2] * q.eye_dir[2];
-    const bool valid = (q.sigma_s_per_m >= 0.0) & (q.sigma_s_per_m <= limit) & (q.sigma_a_per_m >= 0.0) &
-                       (q.sigma_a_per_m <= limit) & (q.intensity_W_per_sr >= 0.0) & (q.intensity_W_per_sr <= limit) &
-                       (q.length_m >= 0.0) & (std::fabs(n2 - 1.0) < 1e-9) & (std::fabs(e2 - 1.0) < 1e-9) &
-                       (q.eta > 0.0) & (q.eta <= limit) & (std::fabs(q.light_rel_m[0]) <= limit) &
-                       (std::fabs(q.light_rel_m[1]) <= limit) & (std::fabs(q.light_rel_m[2]) <= limit);
+    bool valid = true;
+    for (const QueryCondition &c : query_conditions(q)) valid &= c.holds;
     if (!valid) return false;
     const slut_nl_params p = slut_nl_params_seen(vec3(q.normal), vec3(q.eye_dir), vec3(q.light_rel_m),
                                                  q.sigma_s_per_m + q.sigma_a_per_m, q.length_m, q.eta);

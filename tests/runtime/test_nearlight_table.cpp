@@ -292,6 +292,48 @@ TEST(NearLightTable, FiniteRadianceMatchesTheGeneralLookup) {
     EXPECT_GT(covered, 1000);
 }
 
+// The thick medium's T·H on the scalar radiance's fast path (angle_over_sine: θ/sin θ from one
+// divide and fdlibm's atan polynomial, the reduction folded into the divide) against
+// atan2(sin θ, cos θ)/sin θ in long double from the same two doubles: within 4 ulp (2^-53
+// relative each) over cos θ uniform in [−1, 1], near ±1 and 0, and on both sides of the
+// reduction's breaks t = sin θ/|cos θ| or its inverse = 7/16, 11/16 and 1; the kernel's
+// exact limits at cos θ = ±1 and 0.
+TEST(NearLightTable, ThickAngleOverSineWithinUlpsOfTheReference) {
+    std::vector<double> cosines;
+    std::mt19937_64 rng(43);
+    std::uniform_real_distribution<double> U(-1.0, 1.0);
+    for (int k = 0; k < 200000; ++k) cosines.push_back(U(rng));
+    for (int e = 1; e <= 16; ++e)
+        for (const double c : {1.0 - std::pow(10.0, -e), std::pow(10.0, -e)}) {
+            cosines.push_back(c);
+            cosines.push_back(-c);
+        }
+    for (const double t : {7.0 / 16.0, 11.0 / 16.0, 1.0})
+        for (const double ratio : {t, 1.0 / t}) { // sin θ/|cos θ| = ratio at |cos θ| = 1/√(1 + ratio²)
+            double c = 1.0 / std::sqrt(1.0 + ratio * ratio);
+            for (int k = 0; k < 8; ++k) c = std::nextafter(c, 0.0);
+            for (int k = 0; k < 16; ++k, c = std::nextafter(c, 1.0)) {
+                cosines.push_back(c);
+                cosines.push_back(-c);
+            }
+        }
+    double worst = 0.0, worst_at = 0.0;
+    for (const double g : cosines) {
+        const double sg = slut_nl_sin_from_cos(g);
+        const long double want = std::atan2(static_cast<long double>(sg), static_cast<long double>(g)) / sg;
+        const double got = scatterlut::detail::near_light_angle_over_sine(g, sg);
+        const double ulps = static_cast<double>(std::fabs((got - want) / want)) / 0x1p-53;
+        if (!(ulps <= worst)) worst = ulps, worst_at = g;
+    }
+    EXPECT_LE(worst, 4.0) << "at cos = " << worst_at;
+    std::printf("angle_over_sine: worst %.2f ulp at cos = %.17g over %zu cosines\n", worst, worst_at, cosines.size());
+    EXPECT_EQ(scatterlut::detail::near_light_angle_over_sine(1.0, 0.0), slut_nl_H_scaled(1.0, HUGE_VAL));
+    EXPECT_EQ(scatterlut::detail::near_light_angle_over_sine(-1.0, 0.0), HUGE_VAL);
+    EXPECT_EQ(slut_nl_H_scaled(-1.0, HUGE_VAL), HUGE_VAL);
+    EXPECT_NEAR(scatterlut::detail::near_light_angle_over_sine(0.0, 1.0), M_PI / 2, 1e-16);
+    EXPECT_NEAR(scatterlut::detail::near_light_angle_over_sine(-0.0, 1.0), M_PI / 2, 1e-16);
+}
+
 // The 3-D table's scalar radiance takes a vector fast path where the CPU allows (nearlight.cpp:
 // the axis warps as one vector call, the cell gathered before H); it must equal the general
 // assembly transmittance·σ_s/(4π)·I0·E·(T·H)/l from the public lookup NearLightTable::E,

@@ -49,6 +49,14 @@ double near_light_radiance_exact(const NearLightQuery &q);
 double near_light_radiance_thin(const NearLightQuery &q);
 double near_light_radiance_distant(const NearLightQuery &q);
 
+namespace detail {
+// T·H of a thick medium, slut_nl_H_scaled(g, ∞) = θ/sin θ with g = cos θ and sin_g = sin θ
+// (slut_nl_sin_from_cos(g)), as the 3-D table's scalar radiance computes it where the CPU has
+// AVX2 and FMA (tables/src/angle_over_sine.hpp: one divide and fdlibm's atan polynomial); the
+// tests compare it with a long-double reference.
+double near_light_angle_over_sine(double g, double sin_g);
+} // namespace detail
+
 // A loaded near-light table (quantity version kNearLightEQuantityVersion):
 //  - near_light_E3: axes T, g, r; channel 0 = ln E (S = ∞);
 //  - near_light_E4: axes T, g, r, q; channel 0 = ln(E/B), B = slut_nl_E_base(T, r, S). Axis q
