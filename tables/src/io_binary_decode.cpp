@@ -151,13 +151,8 @@ Axis parse_axis(const Decoder &d, const uint8_t *p, size_t n, size_t index) {
     if (!warp_ok)
         d.fail(label + ": unknown warp id " + std::to_string(warp) + " (this reader knows 0 to " +
                std::to_string(SLUT_WARP_COUNT - 1) + ": linear, log, log1p, asinh_cot, sqrt1p, loglin, nl_qodds, asinh_cot_peak)");
-    if (a.map.count < 2)
-        d.fail(label + ": count " + std::to_string(a.map.count) + " is invalid (need 2 <= count <= 2^31-1)");
-    if (!std::isfinite(a.map.min) || !std::isfinite(a.map.max) || !std::isfinite(a.map.scale))
-        d.fail(label + ": range [" + digits17(a.map.min) + ", " + digits17(a.map.max) + "] / scale " + digits17(a.map.scale) +
-               " is not finite");
-    if (!(a.map.min < a.map.max))
-        d.fail(label + ": min " + digits17(a.map.min) + " must be less than max " + digits17(a.map.max));
+    const std::string extent = detail::axis_extent_problem(a.map.count, a.map.min, a.map.max, a.map.scale);
+    if (!extent.empty()) d.fail(label + ": " + extent);
     return a;
 }
 

@@ -172,13 +172,8 @@ Table decode_exr_header(ExrReader &r, const Imf::Header &h) {
         if (wname != warp_name(a.map.warp))
             r.fail(label + ": warp id " + std::to_string(a.map.warp) + " is '" + warp_name(a.map.warp) +
                    "' but warp_name says '" + wname + "'");
-        if (a.map.count < 2)
-            r.fail(label + ": count " + std::to_string(a.map.count) + " is invalid (need 2 <= count <= 2^31-1)");
-        if (!std::isfinite(a.map.min) || !std::isfinite(a.map.max) || !std::isfinite(a.map.scale))
-            r.fail(label + ": range [" + digits17(a.map.min) + ", " + digits17(a.map.max) + "] / scale " + digits17(a.map.scale) +
-                   " is not finite");
-        if (!(a.map.min < a.map.max))
-            r.fail(label + ": min " + digits17(a.map.min) + " must be less than max " + digits17(a.map.max));
+        const std::string extent = detail::axis_extent_problem(a.map.count, a.map.min, a.map.max, a.map.scale);
+        if (!extent.empty()) r.fail(label + ": " + extent);
         t.axes.push_back(a);
     }
     long double nodes = 1;
