@@ -120,10 +120,10 @@ AirlightTable::AirlightTable(Table table) : table_(std::move(table)) {
     // G̃ ∈ (0, 1]: a stored ln G̃ above 0 (beyond rounding) or below −1e6 is no airlight value.
     const size_t stride = table_.channels.size();
     for (size_t i = 0; i < table_.values.size(); i += stride)
-        require(table_.values[i] >= kMinStoredLn && table_.values[i] <= kLnRoundingSlack,
-                "airlight table: ln G~ = " + std::to_string(table_.values[i]) + " at " +
-                    detail::describe_value(table_, i) +
-                    " is outside the quantity's range (G~ in (0, 1]: ln G~ <= 0): the file is corrupt");
+        if (!(table_.values[i] >= kMinStoredLn && table_.values[i] <= kLnRoundingSlack)) // the message only when it fails
+            throw std::invalid_argument("airlight table: ln G~ = " + std::to_string(table_.values[i]) + " at " +
+                                        detail::describe_value(table_, i) +
+                                        " is outside the quantity's range (G~ in (0, 1]: ln G~ <= 0): the file is corrupt");
     cache_ = make_sampler_cache(table_);
     values32_ = float_values_if_exact(table_);
     u_max_ = table_.axes[0].map.max;

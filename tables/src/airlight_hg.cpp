@@ -51,10 +51,11 @@ AirlightHgTable::AirlightHgTable(Table table) : table_(std::move(table)) {
     const double ln_max = std::log(slut_hg_psi_max(g_));
     const size_t stride = table_.channels.size();
     for (size_t i = 0; i < table_.values.size(); i += stride)
-        require(table_.values[i] >= kMinStoredLn && table_.values[i] <= ln_max + kLnRoundingSlack,
-                "anisotropic airlight table: ln G~_g = " + std::to_string(table_.values[i]) + " at " +
-                    detail::describe_value(table_, i) + " is outside the quantity's range (ln G~_g <= ln psi_max = " +
-                    std::to_string(ln_max) + "): the file is corrupt");
+        if (!(table_.values[i] >= kMinStoredLn && table_.values[i] <= ln_max + kLnRoundingSlack)) // the message only when it fails
+            throw std::invalid_argument("anisotropic airlight table: ln G~_g = " + std::to_string(table_.values[i]) +
+                                        " at " + detail::describe_value(table_, i) +
+                                        " is outside the quantity's range (ln G~_g <= ln psi_max = " +
+                                        std::to_string(ln_max) + "): the file is corrupt");
     cache_ = make_sampler_cache(table_);
     u_max_ = table_.axes[0].map.max;
     w_min_ = table_.axes[1].map.min;
