@@ -33,13 +33,10 @@ bool unit_vector(const double *v) {
     return std::fabs(n2 - 1.0) < 1e-9;
 }
 
-// check_near_light_query's conditions, each with the message it throws; NaN fails every one.
-// The check takes them one by one; the scalar radiance's fast path all at once (one branch).
-struct QueryCondition {
-    bool holds;
-    const char *message;
-};
-inline std::array<QueryCondition, 10> query_conditions(const NearLightQuery &q) {
+// check_near_light_query's conditions (require.hpp's Condition), each with the message it
+// throws; NaN fails every one. The check takes them one by one; the scalar radiance's fast
+// path all at once.
+inline std::array<detail::Condition, 10> query_conditions(const NearLightQuery &q) {
     constexpr double largest = std::numeric_limits<double>::max();
     const auto finite_nonnegative = [](double x) -> bool { return (x >= 0.0) & (x <= largest); };
     const auto finite_positive = [](double x) -> bool { return (x > 0.0) & (x <= largest); };
@@ -95,7 +92,7 @@ double detail::near_light_exit_transmittance(const NearLightQuery &q) {
 double detail::near_light_angle_over_sine(double g, double sin_g) { return angle_over_sine(g, sin_g); }
 
 void check_near_light_query(const NearLightQuery &q) {
-    for (const QueryCondition &c : query_conditions(q)) require(c.holds, c.message);
+    detail::require_each(query_conditions(q));
 }
 
 NearLightParams near_light_params(const NearLightQuery &q) {
@@ -459,9 +456,7 @@ namespace {
 // e3_radiance and e4_radiance leave. Flattened: the front-end and the table's checks inline
 // (as calls they were ~10 % of the call's samples in `perf record`).
 SLUT_SIMD4_TARGET __attribute__((flatten)) bool radiance_simd(const NearLightTable &table, const NearLightQuery &q, double *L) {
-    bool valid = true;
-    for (const QueryCondition &c : query_conditions(q)) valid &= c.holds;
-    if (!valid) return false;
+    if (!detail::all_hold(query_conditions(q))) return false;
     const slut_nl_params p = slut_nl_params_seen(vec3(q.normal), vec3(q.eye_dir), vec3(q.light_rel_m),
                                                  q.sigma_s_per_m + q.sigma_a_per_m, q.length_m, q.eta);
     if (p.kind != SLUT_NL_OK) return false;

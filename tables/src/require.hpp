@@ -1,8 +1,11 @@
 // The runtime library's argument check (internal; not installed): throws
 // std::invalid_argument(message) unless `ok`. Two overloads so that the hot paths (radiance
-// checks every query) pass literal messages without building a std::string.
+// checks every query) pass literal messages without building a std::string; and lists of
+// conditions (Condition) for the query checks.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -14,6 +17,26 @@ inline void require(bool ok, const char *message) {
 
 inline void require(bool ok, const std::string &message) {
     if (!ok) throw std::invalid_argument(message);
+}
+
+// A check's condition and the message it throws when it fails. A query type lists its
+// checks once, as an array of these: the checking call takes them one by one (require_each:
+// the first that fails throws), a fast path all at once (all_hold: no branch per check).
+struct Condition {
+    bool holds;
+    const char *message;
+};
+
+template <size_t N>
+void require_each(const std::array<Condition, N> &conditions) {
+    for (const Condition &c : conditions) require(c.holds, c.message);
+}
+
+template <size_t N>
+inline bool all_hold(const std::array<Condition, N> &conditions) {
+    bool holds = true;
+    for (const Condition &c : conditions) holds &= c.holds;
+    return holds;
 }
 
 } // namespace scatterlut::detail
