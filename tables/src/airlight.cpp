@@ -230,23 +230,31 @@ using simd4::v4d;
 
 // slut_airlight_theta_integral_one_panel's six nodes as two 4-lane vectors (the last two
 // lanes weight 0), e^{−σ_t D} folded into the node exponentials: the same sum in 2 vector
-// exps instead of 7 scalar ones and a third of the divides.
+// exps instead of 7 scalar ones and a third of the divides. tan dv comes as a quotient
+// tan_num/tan_den as well: the exponents −c·t/(sin w2 − t·cos w2) are taken as
+// −c·t′/(tan_den·sin w2 − t′·cos w2) with t′ = t·tan_den from tan_num, so that their divide
+// does not wait for tan dv's (AirlightScalar4 passes the triangle's two sides; the portable
+// path tan dv and 1, the kernel's expression).
 // (always inline: AirlightScalar4's call too; one_panel_radiance4 below for the portable path)
-SLUT_SIMD4_TARGET inline __attribute__((always_inline)) double one_panel_radiance4_inline(const slut_airlight_geometry &g) {
+SLUT_SIMD4_TARGET inline __attribute__((always_inline)) double
+one_panel_radiance4_inline(const slut_airlight_geometry &g, double tan_num, double tan_den) {
     const v4d x0 = {-slut_gl6_x[0], -slut_gl6_x[1], -slut_gl6_x[2], slut_gl6_x[0]};
     const v4d x1 = {slut_gl6_x[1], slut_gl6_x[2], 0.0, 0.0};
     const v4d w0 = {slut_gl6_w[0], slut_gl6_w[1], slut_gl6_w[2], slut_gl6_w[0]};
     const v4d w1 = {slut_gl6_w[1], slut_gl6_w[2], 0.0, 0.0};
-    const double half_len = 0.5 * g.tan_dv;
+    const double half_len = 0.5 * g.tan_dv, half_num = 0.5 * tan_num, sin_den = tan_den * g.cos_half;
+    const v4d n0 = half_num * (1.0 + x0), n1 = half_num * (1.0 + x1);
+    const v4d e0 = -g.c * n0 / (sin_den - n0 * g.sin_half) - g.optical_distance;
+    const v4d e1 = -g.c * n1 / (sin_den - n1 * g.sin_half) - g.optical_distance;
     const v4d t0 = half_len * (1.0 + x0), t1 = half_len * (1.0 + x1);
-    const v4d e0 = -g.c * t0 / (g.cos_half - t0 * g.sin_half) - g.optical_distance;
-    const v4d e1 = -g.c * t1 / (g.cos_half - t1 * g.sin_half) - g.optical_distance;
     const v4d f = w0 / (1.0 + t0 * t0) * simd4::exp4(e0) + w1 / (1.0 + t1 * t1) * simd4::exp4(e1);
     // half_len/sin γ first: at γ → 0 both are ~1e-300, and the sum carries e^{−σ_t D}, so
     // half_len·sum would underflow where the radiance does not.
     return g.scale_unattenuated * ((half_len / g.sin_gamma) * ((f[0] + f[1]) + (f[2] + f[3])));
 }
-SLUT_SIMD4_TARGET double one_panel_radiance4(const slut_airlight_geometry &g) { return one_panel_radiance4_inline(g); }
+SLUT_SIMD4_TARGET double one_panel_radiance4(const slut_airlight_geometry &g) {
+    return one_panel_radiance4_inline(g, g.tan_dv, 1.0);
+}
 } // namespace
 #endif
 
@@ -436,11 +444,14 @@ one_panel_radiance8(double c, double cos_half, double sin_half, double tan_dv, d
 // geometry of slut_airlight_setup_near_end_unscaled and slut_sincos_half_angle written
 // without branches on the geometry (blends; |x| + d in place of the two signs' d ± x) and
 // its independent divides, square roots and transcendentals as 4-lane vector operations:
-// one divide for tan w1, cot w1's factor and tan dv (and their reciprocals), one atan for
-// w1 and dv, one log for the three warps, one exp for the two decodes and e^{−σ_t D} (and the
-// one-panel rule's six exps as one 8-lane exp where the CPU has AVX-512). The
-// same formulas (FMA contraction aside: 1e-12 against the portable path, test
-// ScalarRadianceMatchesThePortablePath). Queries outside its plain range take the portable path.
+// one divide for tan w1 and tan dv (each with its reciprocal: the two signs' quotients),
+// one atan for w1 and dv, one divide for the three warps' arguments and 1/sin γ, one log
+// for the three warps, one exp for the two decodes and e^{−σ_t D} (and the one-panel rule's
+// six exps as one 8-lane exp where the CPU has AVX-512). The same formulas but for the warps'
+// arguments and the one-panel exponents' divide, both taken from the triangle's sides so as
+// not to wait on another quotient (see there), and FMA contraction: 1e-12 against the
+// portable path, test ScalarRadianceMatchesThePortablePath. Queries outside its plain range
+// take the portable path.
 // eight_lanes: the one-panel rule on 8 lanes (only where the CPU has AVX-512F), else on 4.
 struct AirlightScalar4 {
     SLUT_SIMD4_TARGET static double radiance(const AirlightTable &t, const AirlightQuery &q, bool eight_lanes) {
@@ -496,21 +507,28 @@ struct AirlightScalar4 {
             g.sin_gamma = sin_gamma;
             return eight_lanes ? one_panel_radiance8(c, cos_half, sin_half, tan_dv, optical_distance, scale_unattenuated,
                                                      sin_gamma)
-                               : one_panel_radiance4_inline(g);
+                               : one_panel_radiance4_inline(g, select_le(0.0, y, ss, dy), select_le(0.0, y, dy, ss));
         }
         if (!t.fast_lookup_) return t.radiance_portable(q);
         const double optical_delta = sigma_t * std::max(s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D), 0.0);
-        const double a1 = sigma_t * select_le(0.0, x, dx, ds * ratios[0]);
-        const double a2 = optical_distance * (2.0 * sin_half * sin_half);
         const v4d angles = simd4::atan4(v4d{tan_w1, tan_dv, 0.0, 0.0}); // w1, dv
         const double w1 = angles[0];
         if (!(w1 >= t.w_min_) || !(u > 0.0) || u > t.u_max_) return t.radiance_portable(q); // asymptotic forms
-        // The warps: u's LOG1P (Goldberg's form) and the two ends' ASINH_COT from cot w = a/u.
+        // The warps: u's LOG1P (Goldberg's form) and the two ends' ASINH_COT, whose argument
+        // cot w + √(1 + cot² w) is taken from the triangle instead of from cot w = a/u (the
+        // portable path's quotient and square root after it): at the viewer cot w2 = tan(γ/2),
+        // so the argument is (1 + sin(γ/2))/cos(γ/2); at the far end cot w1 = dx/ds (x ≥ 0) or
+        // ds/dx, and with √(dx² + ds²) = √(2·d·dx) (d² = x² + ds²) it is (dx + √(2·d·dx))/ds or
+        // (ds + √(2·d·dx))/dx. One divide for the three arguments and 1/sin γ, its square root
+        // beside the divide for tan w1 and tan dv, not after it: a few ulps from the portable
+        // path's arguments.
+        const double hypotenuse = std::sqrt((d_far + d_far) * dx);
+        const double far_num = select_le(0.0, x, dx, ds), far_den = select_le(0.0, x, ds, dx);
         const slut_axis &axis_u = t.table_.axes[0].map;
-        const v4d quotients = v4d{u - axis_u.min, a2, a1, 1.0} / v4d{axis_u.scale, u, u, 1.0};
-        const double x_u = quotients[0], cot2 = quotients[1], cot1 = quotients[2], one_plus_x_u = 1.0 + x_u;
-        const v4d roots = simd4::sqrt4(v4d{1.0 + cot2 * cot2, 1.0 + cot1 * cot1, 1.0, 1.0});
-        const v4d logs = simd4::log4(v4d{one_plus_x_u, cot2 + roots[0], cot1 + roots[1], 1.0});
+        const v4d quotients = v4d{u - axis_u.min, 1.0 + sin_half, far_num + hypotenuse, 1.0} /
+                              v4d{axis_u.scale, cos_half, far_den, sin_gamma};
+        const double x_u = quotients[0], one_plus_x_u = 1.0 + x_u, inv_sin_gamma = quotients[3];
+        const v4d logs = simd4::log4(v4d{one_plus_x_u, quotients[1], quotients[2], 1.0});
         const double goldberg = one_plus_x_u == 1.0 ? 1.0 : x_u / (one_plus_x_u - 1.0);
         const double g_u = one_plus_x_u == 1.0 ? x_u : logs[0] * goldberg;
         // The unit coordinates with the spans' reciprocals (once per table: a product in place
@@ -523,8 +541,7 @@ struct AirlightScalar4 {
         slut_cell_from_unit(unit_u, t.count_u_, &cell_u, &frac_u);
         const double ln2 = t.ln_gs_at(cell_u, frac_u, units[1]), ln1 = t.ln_gs_at(cell_u, frac_u, units[2]);
         const v4d e = simd4::exp4(v4d{ln2 - optical_distance, ln1 - optical_distance - optical_delta, -optical_distance, 0.0});
-        const v4d terms = v4d{w2, w1, 0.0, 0.0} / v4d{sin_gamma, sin_gamma, 1.0, 1.0};
-        const double viewer_term = terms[0] * e[0], far_term = terms[1] * e[1];
+        const double viewer_term = (w2 * inv_sin_gamma) * e[0], far_term = (w1 * inv_sin_gamma) * e[1];
         if (far_term <= 0.5 * viewer_term) return scale_unattenuated * (viewer_term - far_term);
         // The two terms would cancel: slut_airlight_from_gs's θ-integral.
         return (scale_unattenuated * e[2]) * (theta_rule8_simd(c, w2, angles[1]) / sin_gamma);

@@ -44,7 +44,7 @@ TEST(FastMath, Log1pGoldbergMatchesLibm) {
 }
 
 // sin and cos of a half angle h ∈ [0, π/2]: ≤ 2 ulps (the Taylor remainders are ≤ 6e-17
-// relative; the rest is Horner rounding), exact at h = 0, the complement at π/2 giving
+// relative; the rest is the rounding of the sums), exact at h = 0, the complement at π/2 giving
 // cos = π/2 − fl(π/2) to full precision, and monotone on a dense grid (sin increasing,
 // cos decreasing: the airlight's w2 = π/2 − h and the geometry's signs rely on it).
 TEST(FastMath, SinCosHalfAngleMatchLibm) {
