@@ -34,19 +34,16 @@ SLUT_FN double slut_log1p_goldberg(double x) {
 /* sin h and cos h for h ∈ [0, π/4] (Taylor; see the header). The polynomials in z = h² by
  * Estrin's scheme (pairs of terms beside z² and z⁴): a chain of 5 operations after z where
  * Horner's is 9 (the airlight's scalar call waits on it); cos's leading 1/2 by Horner, for
- * Horner's rounding (≤ 1 ulp; an Estrin sum of all of cos's terms was 1.4 ulps). */
+ * Horner's rounding (≤ 1 ulp; an Estrin sum of all of cos's terms was 1.4 ulps). Written once
+ * as lane-generic steps, so that the runtime's 4-lane batch (a vector h) takes the same
+ * operations: SLUT_SIN_QUARTER(h, z, z2, z4) and SLUT_COS_QUARTER(z, z2, z4) with z = h²,
+ * z2 = z², z4 = z2². One line each: GLSL before 4.20 has no line continuation. */
+#define SLUT_SIN_QUARTER(h, z, z2, z4) ((h) + ((h) * (z)) * (((-1.0 / 6.0 + (z) * (1.0 / 120.0)) + (z2) * (-1.0 / 5040.0 + (z) * (1.0 / 362880.0))) + (z4) * ((-1.0 / 39916800.0 + (z) * (1.0 / 6227020800.0)) + (z2) * (-1.0 / 1307674368000.0 + (z) * (1.0 / 355687428096000.0)))))
+#define SLUT_COS_QUARTER(z, z2, z4) (1.0 - (z) * (0.5 + (z) * (((-1.0 / 24.0 + (z) * (1.0 / 720.0)) + (z2) * (-1.0 / 40320.0 + (z) * (1.0 / 3628800.0))) + (z4) * ((-1.0 / 479001600.0 + (z) * (1.0 / 87178291200.0)) + (z2) * (-1.0 / 20922789888000.0 + (z) * (1.0 / 6402373705728000.0))))))
 SLUT_FN void slut_sincos_quarter(double h, double *sin_h, double *cos_h) {
     double z = h * h, z2 = z * z, z4 = z2 * z2;
-    double s01 = -1.0 / 6.0 + z * (1.0 / 120.0);
-    double s23 = -1.0 / 5040.0 + z * (1.0 / 362880.0);
-    double s45 = -1.0 / 39916800.0 + z * (1.0 / 6227020800.0);
-    double s67 = -1.0 / 1307674368000.0 + z * (1.0 / 355687428096000.0); /* 1/15!, 1/17! */
-    *sin_h = h + (h * z) * ((s01 + z2 * s23) + z4 * (s45 + z2 * s67));
-    double c01 = -1.0 / 24.0 + z * (1.0 / 720.0);
-    double c23 = -1.0 / 40320.0 + z * (1.0 / 3628800.0);
-    double c45 = -1.0 / 479001600.0 + z * (1.0 / 87178291200.0);
-    double c67 = -1.0 / 20922789888000.0 + z * (1.0 / 6402373705728000.0); /* 1/16!, 1/18! */
-    *cos_h = 1.0 - z * (0.5 + z * ((c01 + z2 * c23) + z4 * (c45 + z2 * c67)));
+    *sin_h = SLUT_SIN_QUARTER(h, z, z2, z4);
+    *cos_h = SLUT_COS_QUARTER(z, z2, z4);
 }
 
 /* sin h and cos h for h ∈ [0, π/2] (a half angle γ/2 of γ ∈ [0, π]). */

@@ -456,13 +456,8 @@ one_panel_radiance8(double c, double cos_half, double sin_half, double tan_dv, d
 struct AirlightScalar4 {
     SLUT_SIMD4_TARGET static double radiance(const AirlightTable &t, const AirlightQuery &q, bool eight_lanes) {
         using simd4::v4d;
-        // check_airlight_query's conditions as one test (it throws, naming the field, if one fails).
-        const double limit = std::numeric_limits<double>::max();
-        const bool valid = (q.sigma_s_per_m >= 0.0) & (q.sigma_s_per_m <= limit) & (q.sigma_a_per_m >= 0.0) &
-                           (q.sigma_a_per_m <= limit) & (q.intensity_W_per_sr >= 0.0) &
-                           (q.intensity_W_per_sr <= limit) & (q.distance_m > 0.0) & (q.distance_m <= limit) &
-                           (q.gamma_rad >= 0.0) & (q.gamma_rad <= 3.14159265358979323846 + 1e-15) & (q.length_m >= 0.0);
-        if (!valid) check_airlight_query(q);
+        // query_conditions (check_airlight_query's) as one test; where one fails the check throws, naming the field.
+        if (!detail::all_hold(query_conditions(q))) check_airlight_query(q);
         const double sigma_s = q.sigma_s_per_m, intensity = q.intensity_W_per_sr, D = q.distance_m, s = q.length_m;
         const double sigma_t = sigma_s + q.sigma_a_per_m;
         const double optical_distance = sigma_t * D;
@@ -586,7 +581,8 @@ void check_airlight_queries(const AirlightQuery *queries, size_t count) {
 
 #if SLUT_HAVE_SIMD4
 // Four queries at a time. Each block of four is set up in 4-lane vectors (the arithmetic of
-// slut_airlight_setup_near_end_unscaled, restated lane-wise; sin and cos of γ/2 by libmvec);
+// slut_airlight_setup_near_end_unscaled, restated lane-wise; sin and cos of γ/2 by the kernel's
+// SLUT_SIN_QUARTER and SLUT_COS_QUARTER, as slut_sincos_half_angle);
 // each query then joins one of two queues by its path (AirlightTable::radiance's test
 // slut_airlight_theta_fits_one_panel), and a queue holding four runs its path on all four
 // lanes: the one-panel θ-rule (6 vector exps per four queries) or the two table samples (a
@@ -597,7 +593,7 @@ void check_airlight_queries(const AirlightQuery *queries, size_t count) {
 struct AirlightBatch {
     struct Lanes { // one queue: up to 4 pending queries (structure of arrays)
         double c[4], sin_half[4], cos_half[4], tan_dv[4], optical_distance[4], scale_unattenuated[4], sin_gamma[4];
-        double u[4], a1[4], a2[4], w2[4], tan_w1[4], optical_delta[4];
+        double u[4], far_num[4], far_den[4], two_d_dx[4], w2[4], tan_w1[4], optical_delta[4];
         size_t index[4];
         int size = 0;
     };
@@ -631,8 +627,9 @@ struct AirlightBatch {
         to.scale_unattenuated[n] = from.scale_unattenuated[k];
         to.sin_gamma[n] = from.sin_gamma[k];
         to.u[n] = from.u[k];
-        to.a1[n] = from.a1[k];
-        to.a2[n] = from.a2[k];
+        to.far_num[n] = from.far_num[k];
+        to.far_den[n] = from.far_den[k];
+        to.two_d_dx[n] = from.two_d_dx[k];
         to.w2[n] = from.w2[k];
         to.tan_w1[n] = from.tan_w1[k];
         to.optical_delta[n] = from.optical_delta[k];
@@ -653,27 +650,32 @@ struct AirlightBatch {
         }
         const v4d zero = simd4::splat(0.0);
         const v4d half = simd4::min4(0.5 * gamma, simd4::splat(SLUT_PIO2_HI));
-        const v4d sin_half = simd4::sin4(half), cos_half = simd4::cos4(half);
         const v4d w2 = (SLUT_PIO2_HI - half) + SLUT_PIO2_LO;
+        // slut_sincos_half_angle lane-wise (the scalar call's sines: its Taylor forms at h ≤ π/4,
+        // else at π/2 − h, swapped), not libmvec's sin and cos: two vector calls fewer.
+        const v4l low = half <= simd4::splat(0.78539816339744828);
+        const v4d h = simd4::select(low, half, w2), z = h * h, z2 = z * z, z4 = z2 * z2;
+        const v4d sin_h = SLUT_SIN_QUARTER(h, z, z2, z4), cos_h = SLUT_COS_QUARTER(z, z2, z4);
+        const v4d sin_half = simd4::select(low, sin_h, cos_h), cos_half = simd4::select(low, cos_h, sin_h);
         const v4d sin_gamma = simd4::max4(2.0 * sin_half * cos_half, simd4::splat(1e-300));
         const v4d cos_gamma = (cos_half - sin_half) * (cos_half + sin_half);
         const v4d sigma_t = sigma_s + sigma_a;
         const v4d scale_unattenuated = sigma_s * SLUT_INV_4PI * intensity * 2.0 / D;
         const v4d optical_distance = sigma_t * D;
         const v4d u = optical_distance * sin_gamma;
-        const v4d a2 = optical_distance * (2.0 * sin_half * sin_half);
         const v4d c = 2.0 * optical_distance * sin_half;
         const v4d d_far = simd4::sqrt4((s - D) * (s - D) + 4.0 * s * D * sin_half * sin_half);
         const v4d x = s - D * cos_gamma, ds = D * sin_gamma;
         const v4d y = D - s * cos_gamma, ss = s * sin_gamma;
         // d + |x| is d + x for x ≥ 0 and d − x below (never cancels): tan w1 = ds/(d + x) or
-        // (d − x)/ds, a1 = σ_t (x + d) or σ_t ds²/(d − x), tan dv likewise with y and ss; the
-        // quotients each lane takes as three divides where six were written (the same values).
+        // (d − x)/ds, tan dv likewise with y and ss, each one divide of the selected sides (the
+        // same values as the scalar call's). The far end's warp argument takes the same sides
+        // (flush_two_sample).
         const v4l x_ahead = x >= zero, y_ahead = y >= zero;
         const v4d dx = d_far + simd4::abs4(x), dy = d_far + simd4::abs4(y);
-        const v4d ds_over_dx = ds / dx;
-        const v4d tan_w1 = simd4::select(x_ahead, ds_over_dx, dx / ds);
-        const v4d a1 = sigma_t * simd4::select(x_ahead, x + d_far, ds * ds_over_dx);
+        const v4d far_num = simd4::select(x_ahead, dx, ds), far_den = simd4::select(x_ahead, ds, dx);
+        const v4d two_d_dx = (d_far + d_far) * dx;
+        const v4d tan_w1 = far_den / far_num;
         const v4d tan_dv = simd4::select(y_ahead, ss, dy) / simd4::select(y_ahead, dy, ss);
         const v4d optical_delta = sigma_t * simd4::max4(s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D), zero);
         // Lanes for the vectors: kind 0 (σ_s, I0, s > 0), finite s, γ/2 > 0 (not through the light).
@@ -700,8 +702,9 @@ struct AirlightBatch {
             queue.scale_unattenuated[k] = scale_unattenuated[l];
             queue.sin_gamma[k] = sin_gamma[l];
             queue.u[k] = u[l];
-            queue.a1[k] = a1[l];
-            queue.a2[k] = a2[l];
+            queue.far_num[k] = far_num[l];
+            queue.far_den[k] = far_den[l];
+            queue.two_d_dx[k] = two_d_dx[l];
             queue.w2[k] = w2[l];
             queue.tan_w1[k] = tan_w1[l];
             queue.optical_delta[k] = optical_delta[l];
@@ -723,8 +726,9 @@ struct AirlightBatch {
             q.scale_unattenuated[k] = q.scale_unattenuated[0];
             q.sin_gamma[k] = q.sin_gamma[0];
             q.u[k] = q.u[0];
-            q.a1[k] = q.a1[0];
-            q.a2[k] = q.a2[0];
+            q.far_num[k] = q.far_num[0];
+            q.far_den[k] = q.far_den[0];
+            q.two_d_dx[k] = q.two_d_dx[0];
             q.w2[k] = q.w2[0];
             q.tan_w1[k] = q.tan_w1[0];
             q.optical_delta[k] = q.optical_delta[0];
@@ -764,11 +768,15 @@ struct AirlightBatch {
         double viewer[4], far[4];
         if (t.fast_lookup_) {
             const slut_axis &axis_u = t.table_.axes[0].map;
+            // The two ends' ASINH_COT arguments cot w + √(1 + cot² w) from the triangle, as the
+            // scalar call: (1 + sin(γ/2))/cos(γ/2) at the viewer, (dx + √(2·d·dx))/ds or
+            // (ds + √(2·d·dx))/dx at the far end.
             const v4d x_u = (u - axis_u.min) / axis_u.scale, one_plus_x_u = 1.0 + x_u;
-            const v4d cot2 = simd4::load4(q.a2) / u, cot1 = simd4::load4(q.a1) / u;
+            const v4d arg2 = (1.0 + simd4::load4(q.sin_half)) / simd4::load4(q.cos_half);
+            const v4d arg1 = (simd4::load4(q.far_num) + simd4::sqrt4(simd4::load4(q.two_d_dx))) / simd4::load4(q.far_den);
             const v4d log_u = simd4::log4(one_plus_x_u);
-            const v4d log2 = simd4::log4(cot2 + simd4::sqrt4(1.0 + cot2 * cot2));
-            const v4d log1 = simd4::log4(cot1 + simd4::sqrt4(1.0 + cot1 * cot1));
+            const v4d log2 = simd4::log4(arg2);
+            const v4d log1 = simd4::log4(arg1);
             const v4d g_u = simd4::select(one_plus_x_u == 1.0, x_u, log_u * (x_u / (one_plus_x_u - 1.0)));
             // The unit coordinates with the spans' reciprocals, as the scalar call.
             v4d unit_u = (g_u - t.cache_.g0[0]) * t.inv_span_u_;
@@ -785,8 +793,9 @@ struct AirlightBatch {
             }
             const v4d e2 = simd4::exp4(ln2 - optical_distance);
             const v4d e1 = simd4::exp4(ln1 - optical_distance - simd4::load4(q.optical_delta));
-            simd4::store4(viewer, (w2 / sin_gamma) * e2);
-            simd4::store4(far, (w1 / sin_gamma) * e1);
+            const v4d inv_sin_gamma = 1.0 / sin_gamma;
+            simd4::store4(viewer, (w2 * inv_sin_gamma) * e2);
+            simd4::store4(far, (w1 * inv_sin_gamma) * e1);
         }
         for (int k = 0; k < q.size; ++k) {
             const size_t i = q.index[k];

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace scatterlut::detail {
 
@@ -32,11 +33,13 @@ void require_each(const std::array<Condition, N> &conditions) {
     for (const Condition &c : conditions) require(c.holds, c.message);
 }
 
+template <size_t N, size_t... I>
+inline bool all_hold(const std::array<Condition, N> &conditions, std::index_sequence<I...>) {
+    return (conditions[I].holds & ...); // each by a constant index: the array folds away
+}
 template <size_t N>
 inline bool all_hold(const std::array<Condition, N> &conditions) {
-    bool holds = true;
-    for (const Condition &c : conditions) holds &= c.holds;
-    return holds;
+    return all_hold(conditions, std::make_index_sequence<N>{});
 }
 
 } // namespace scatterlut::detail
