@@ -65,7 +65,11 @@ slut_nl_params params(const NearLightQuery &q) {
 
 slut_vec3 vec3(const double *v) { return slut_vec3_make(v[0], v[1], v[2]); }
 
-double exit_transmittance(const NearLightQuery &q) { return near_light_exit_transmittance(q); }
+// The kernel's function, inline in the radiance's fast path (through the exported
+// detail::near_light_exit_transmittance it was a call, and eight registers spilled around it).
+double exit_transmittance(const NearLightQuery &q) {
+    return slut_exit_transmittance(vec3(q.normal), vec3(q.eye_dir), q.eta, q.fresnel ? 1 : 0);
+}
 
 // σ_s/(4π)·I0·E·(T·H)/l with the exit's Fresnel factor (slut_nl_assemble); the factor only
 // where the assembly uses it.
@@ -85,11 +89,23 @@ slut_nl_params detail::near_light_params_unchecked(const NearLightQuery &q) {
                                q.eta);
 }
 
-double detail::near_light_exit_transmittance(const NearLightQuery &q) {
-    return slut_exit_transmittance(vec3(q.normal), vec3(q.eye_dir), q.eta, q.fresnel ? 1 : 0);
-}
+double detail::near_light_exit_transmittance(const NearLightQuery &q) { return exit_transmittance(q); }
 
-double detail::near_light_angle_over_sine(double g, double sin_g) { return angle_over_sine(g, sin_g); }
+#if SLUT_HAVE_SIMD4
+namespace {
+// The form e3_radiance takes (one lane of simd4::v2d, compiled for AVX2 and FMA).
+SLUT_SIMD4_TARGET double angle_over_sine_simd(double g, double sin_g) {
+    return detail::angle_over_sine(simd4::v2d{g, g}, simd4::v2d{sin_g, sin_g})[0];
+}
+} // namespace
+#endif
+
+double detail::near_light_angle_over_sine(double g, double sin_g) {
+#if SLUT_HAVE_SIMD4
+    if (simd4::available()) return angle_over_sine_simd(g, sin_g);
+#endif
+    return angle_over_sine(g, sin_g);
+}
 
 void check_near_light_query(const NearLightQuery &q) {
     detail::require_each(query_conditions(q));
@@ -267,8 +283,11 @@ struct NearLightBatch {
     // span g1 − g0) as products with reciprocals computed once per table: an ulp or two from
     // the scalar form, two divides fewer on the path to the cell (BM_NearLightRadiance/3
     // 75 → 72 ns in a throw-away driver over the bench's geometries, thread CPU time, minimum
-    // of 1000 rounds, three interleaved runs). False where an axis has a warp without those steps.
-    SLUT_SIMD4_TARGET static bool units3(const NearLightTable &t, double T, double g, double r, double *unit) {
+    // of 1000 rounds, three interleaved runs). The vector sqrt's fourth lane, which no axis
+    // uses, takes √extra_sqrt_arg into *extra_root (the 3-D call's sin θ: one square root fewer
+    // on its path). False where an axis has a warp without those steps.
+    SLUT_SIMD4_TARGET static bool units3(const NearLightTable &t, double T, double g, double r, double *unit,
+                                         double extra_sqrt_arg = 0.0, double *extra_root = nullptr) {
         const NearLightTable::AxisLanes &lanes = t.axis_lanes_;
         if (!lanes.runtime_forms) return false;
         const v4d p = {T, g, r, 1.0}, p_min = simd4::load4(lanes.min), p_max = simd4::load4(lanes.max);
@@ -276,7 +295,10 @@ struct NearLightBatch {
         const v4d x = SLUT_WARP_X_TIMES_SCALE(warp, p, p_min) * simd4::load4(lanes.inv_scale);
         const v4d arg = SLUT_WARP_ARG(warp, p, x);
         const v4l takes_sqrt = warp == SLUT_WARP_SQRT1P, takes_log = !takes_sqrt && warp != SLUT_WARP_LINEAR;
-        const v4d ln = simd4::log4(takes_log ? arg : 1.0), root = simd4::sqrt4(simd4::max4(arg, simd4::splat(0.0)));
+        v4d root_arg = simd4::max4(arg, simd4::splat(0.0));
+        root_arg[3] = extra_sqrt_arg;
+        const v4d ln = simd4::log4(takes_log ? arg : 1.0), root = simd4::sqrt4(root_arg);
+        if (extra_root) *extra_root = root[3];
         const v4d t_arg = takes_log ? ln : takes_sqrt ? root : arg;
         const v4d warped = SLUT_WARPED_GIVEN(warp, p, x, arg, t_arg);
         const v4d u = SLUT_UNIT_CLAMPED(p, p_min, p_max, (warped - simd4::load4(lanes.g0)) * simd4::load4(lanes.inv_span));
@@ -383,22 +405,27 @@ struct NearLightBatch {
     // corners gathered, then H, then the lerps), H = slut_nl_H_scaled(g, ∞) as θ/sin θ in one
     // divide (angle_over_sine.hpp; with libmvec's 4-lane atan and the three vector divides
     // around it the call took 1.02–1.04× the time: 6 interleaved rounds of
-    // `scatterlut_bench --benchmark_filter=NearLightRadiance/3`, a 2-core AMD EPYC (Zen) VM):
-    // the same values as assemble(q, p, E(...)) to libmvec's log against libm's, the atan's
-    // ≤ 4 ulp, FMA contraction and the assembly's order (E last). False (nothing computed)
-    // where that path must answer: outside the table, T = 0, zero radiance, the light at the entry point, f64 values.
+    // `scatterlut_bench --benchmark_filter=NearLightRadiance/3`, a 2-core AMD EPYC (Zen) VM),
+    // its selects as blends (the v2d form: GCC made branches of the scalar form's, and g is
+    // random per query), sin θ from units3's spare square-root lane (the same value as
+    // slut_nl_sin_from_cos). The same values as assemble(q, p, E(...)) to libmvec's log against
+    // libm's, the atan's ≤ 4 ulp, FMA contraction and the assembly's order (E last). False
+    // (nothing computed) where that path must answer: outside the table, T = 0, zero radiance,
+    // the light at the entry point, f64 values.
     SLUT_SIMD4_TARGET static bool e3_radiance(const NearLightTable &t, const NearLightQuery &q, const slut_nl_params &p,
                                               double *L) {
         if (t.values32_.empty() || !(q.sigma_s_per_m > 0.0) || !(q.intensity_W_per_sr > 0.0) || !(q.length_m > 0.0) ||
             !(p.distance_m > 0.0) || !(p.T > 0.0) || !t.covers(p.T, p.g, p.r, p.S))
             return false;
-        double unit[3];
-        if (!units3(t, p.T, p.g, p.r, unit)) return false;
+        double unit[3], sg;
+        const double ag = std::fabs(p.g); // sg = √((1 − |g|)(1 + |g|)): slut_nl_sin_from_cos(g), |g| ≤ 1
+        if (!units3(t, p.T, p.g, p.r, unit, (1.0 - ag) * (1.0 + ag), &sg)) return false;
         double corner[8], frac[3];
         detail::gather_cell<3>(t.table_, t.values32_.data(), unit, 0, corner, frac);
-        const double H_scaled = detail::angle_over_sine(p.g, slut_nl_sin_from_cos(p.g));
+        const double H_scaled = angle_over_sine_simd(p.g, sg);
         // slut_nl_assemble_given_H with E = 1, times E: the assembly's multiplies and divide
-        // run beside the cell's loads and the decoding exp instead of after them.
+        // run beside the cell's loads and the decoding exp instead of after them (and its
+        // divide by l beside H: the assembly divides before multiplying by T·H).
         const double scale = slut_nl_assemble_given_H(p, q.sigma_s_per_m, q.intensity_W_per_sr, q.length_m,
                                                       exit_transmittance(q), 1.0, H_scaled);
         *L = scale * std::exp(detail::lerp_cell<3>(corner, frac));
@@ -442,7 +469,8 @@ struct NearLightBatch {
         else if (!(r > 0.0)) thin = 0.0;
         else thin = SLUT_NL_THIN_NEEDS_EXPM1(x) ? -em1[1] / x : SLUT_NL_THIN_OF_X_WITHOUT_EXPM1(x);
         const double E = e[0] * SLUT_NL_BASE_OF_THIN(e[1], -em1[0], thin);
-        *L = exit_transmittance(q) * q.sigma_s_per_m * SLUT_INV_4PI * q.intensity_W_per_sr * E * H_scaled / p.distance_m;
+        *L = slut_nl_assemble_given_H(p, q.sigma_s_per_m, q.intensity_W_per_sr, q.length_m, exit_transmittance(q), E,
+                                      H_scaled);
         return true;
     }
 };

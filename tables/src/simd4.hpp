@@ -29,6 +29,9 @@ namespace scatterlut::simd4 {
 
 typedef double v4d __attribute__((vector_size(32)));
 typedef long long v4l __attribute__((vector_size(32))); // comparison masks: all ones or 0 per lane
+// Two doubles (SSE): one meaningful lane where a scalar computation's `?:` must be blends,
+// not branches (angle_over_sine.hpp).
+typedef double v2d __attribute__((vector_size(16)));
 
 } // namespace scatterlut::simd4
 
