@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
@@ -237,7 +239,9 @@ TEST(NearLightTable, BatchMatchesScalarPerQuery) {
     }
 }
 
-// A bad query anywhere in a batch: std::invalid_argument naming its index, nothing written.
+// A bad query anywhere in a batch: std::invalid_argument naming the first bad one's index and
+// what is wrong with it, nothing written (the viewer below the surface alone; then a field
+// check failing before it).
 TEST(NearLightTable, BatchChecksEveryQueryBeforeWriting) {
     const scatterlut::NearLightTable table(small_table(false));
     std::vector<scatterlut::NearLightQuery> queries(7);
@@ -248,14 +252,19 @@ TEST(NearLightTable, BatchChecksEveryQueryBeforeWriting) {
         q.light_rel_m[0] = 0.3;
     }
     queries[5].eye_dir[2] = -1.0; // the viewer below the surface
-    std::vector<double> out(queries.size(), -1.0);
-    try {
-        table.radiance(queries.data(), queries.size(), out.data());
-        ADD_FAILURE() << "no exception";
-    } catch (const std::invalid_argument &e) {
-        EXPECT_NE(std::string(e.what()).find("query 5"), std::string::npos) << e.what();
+    for (const auto &[bad_index, what] : {std::pair<int, const char *>{5, "viewer is below"}, {2, "sigma_a"}}) {
+        if (bad_index == 2) queries[2].sigma_a_per_m = -1.0;
+        std::vector<double> out(queries.size(), -1.0);
+        try {
+            table.radiance(queries.data(), queries.size(), out.data());
+            ADD_FAILURE() << "no exception";
+        } catch (const std::invalid_argument &e) {
+            const std::string message = e.what();
+            EXPECT_NE(message.find("query " + std::to_string(bad_index) + ":"), std::string::npos) << message;
+            EXPECT_NE(message.find(what), std::string::npos) << message;
+        }
+        for (double v : out) EXPECT_EQ(v, -1.0);
     }
-    for (double v : out) EXPECT_EQ(v, -1.0);
 }
 
 // The 4-D table's scalar radiance packs its transcendentals into vector lanes where the CPU
