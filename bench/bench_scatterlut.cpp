@@ -376,6 +376,29 @@ const scatterlut::Table &default_nearlight_table(bool finite) {
 
 constexpr size_t kPoints = 4096; // cycled through; fits in L1/L2 with the query structs
 
+// The runtime's cheaper forms of kernels/slut_fastmath.h against libm's, on the same 4096
+// arguments cycled (independent calls: throughput): /0 slut_sincos_half_angle and /1 glibc's
+// sincos on h uniform in [0, π/2]; /2 slut_log1p_goldberg and /3 log1p on x = 10^U(−8, 3).
+void BM_FastMath(benchmark::State &state) {
+    const int which = static_cast<int>(state.range(0));
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> half_angle(0.0, M_PI / 2), decade(-8.0, 3.0);
+    std::vector<double> args(kPoints);
+    for (double &a : args) a = which < 2 ? half_angle(rng) : std::pow(10.0, decade(rng));
+    size_t k = 0;
+    for (auto _ : state) {
+        const double a = args[k];
+        double s = 0.0, c = 0.0;
+        if (which == 0) slut_sincos_half_angle(a, &s, &c);
+        else if (which == 1) sincos(a, &s, &c);
+        else s = which == 2 ? slut_log1p_goldberg(a) : std::log1p(a);
+        benchmark::DoNotOptimize(s);
+        benchmark::DoNotOptimize(c);
+        k = (k + 1) % kPoints;
+    }
+}
+BENCHMARK(BM_FastMath)->DenseRange(0, 3);
+
 void BM_AirlightScaledTail(benchmark::State &state) {
     const scatterlut::AirlightTable table(default_airlight_table());
     const slut_axis &au = table.table().axes[0].map, &aw = table.table().axes[1].map;

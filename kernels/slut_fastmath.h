@@ -1,18 +1,21 @@
-/* scatterlut — ln(1 + x) and the sine and cosine of a half angle in cheaper forms than
- * libm's, for the runtime lookups (tables/src: the table radiance and the samplers' warps).
+/* scatterlut — ln(1 + x) in a form whose log a vector call can share, and the sine and cosine
+ * of a half angle cheaper than libm's, for the runtime lookups (tables/src: the table radiance
+ * and the samplers' warps).
  *
  * Why: a table lookup costs a few multiply-adds; the transcendentals around it (one warp
- * per axis, an exp to decode, the geometry's angles) are what a radiance call pays. Timed
- * here (a throughput loop, glibc 2.36, x86-64 baseline, no FMA): exp 7.5, log 6.2, atan 12,
- * sincos 17, log1p 13, expm1 7.4 ns. glibc's exp, log, atan and expm1 are table-driven and
- * as fast as any polynomial of the same accuracy (a Taylor exp and log written here took
- * 11.6 and 11.8 ns), so those stay libm; the two below are 30–45 % cheaper:
- *   log1p: Goldberg's form ln(1 + x) = ln(u)·x/(u − 1), u = fl(1 + x): a log and a divide
- *          (9.4 ns), within a few ulps (Goldberg 1991, "What every computer scientist
- *          should know about floating-point arithmetic", Theorem 4);
+ * per axis, an exp to decode, the geometry's angles) are what a radiance call pays. glibc's
+ * exp, log, atan and expm1 are table-driven and as fast as any polynomial of the same
+ * accuracy (a Taylor exp and log written here were slower than libm's, in a throughput loop
+ * and again in the runtime's 4-lane calls against libmvec's), so those stay libm's. The two
+ * below (`scatterlut_bench --benchmark_filter=BM_FastMath`: /0 against sincos /1, /2 against
+ * log1p /3; on a 2-core AMD EPYC VM, glibc 2.36: 9.8 against 23 ns, 16.1 against 15.5 ns):
+ *   log1p: Goldberg's form ln(1 + x) = ln(u)·x/(u − 1), u = fl(1 + x): a log and a divide,
+ *          within a few ulps (Goldberg 1991, "What every computer scientist should know
+ *          about floating-point arithmetic", Theorem 4). No cheaper than glibc's log1p
+ *          there; what it buys is its log, which the runtime's 4-lane warps share with the other
+ *          axes' (slut_axes.h's SLUT_WARPED_GIVEN);
  *   sin, cos of h ∈ [0, π/2]: Taylor series on [0, π/4] to h^17 and h^18 (remainders
- *          ≤ 6e-17 and 2e-18 relative), above it by the complement π/2 − h (π/2 as hi + lo):
- *          9.2 ns for both, against sincos's 17.
+ *          ≤ 6e-17 and 2e-18 relative), above it by the complement π/2 − h (π/2 as hi + lo).
  * Both are tested against libm over their domains in tests/kernels/test_fastmath.cpp (maximum
  * error in ulps, the special points exactly). Compiled as C++ (valid OpenCL C); not part
  * of the GLSL/HLSL snippets.
@@ -37,9 +40,15 @@ SLUT_FN double slut_log1p_goldberg(double x) {
  * Horner's rounding (≤ 1 ulp; an Estrin sum of all of cos's terms was 1.4 ulps). Written once
  * as lane-generic steps, so that the runtime's 4-lane batch (a vector h) takes the same
  * operations: SLUT_SIN_QUARTER(h, z, z2, z4) and SLUT_COS_QUARTER(z, z2, z4) with z = h²,
- * z2 = z², z4 = z2². One line each: GLSL before 4.20 has no line continuation. */
-#define SLUT_SIN_QUARTER(h, z, z2, z4) ((h) + ((h) * (z)) * (((-1.0 / 6.0 + (z) * (1.0 / 120.0)) + (z2) * (-1.0 / 5040.0 + (z) * (1.0 / 362880.0))) + (z4) * ((-1.0 / 39916800.0 + (z) * (1.0 / 6227020800.0)) + (z2) * (-1.0 / 1307674368000.0 + (z) * (1.0 / 355687428096000.0)))))
-#define SLUT_COS_QUARTER(z, z2, z4) (1.0 - (z) * (0.5 + (z) * (((-1.0 / 24.0 + (z) * (1.0 / 720.0)) + (z2) * (-1.0 / 40320.0 + (z) * (1.0 / 3628800.0))) + (z4) * ((-1.0 / 479001600.0 + (z) * (1.0 / 87178291200.0)) + (z2) * (-1.0 / 20922789888000.0 + (z) * (1.0 / 6402373705728000.0))))))
+ * z2 = z², z4 = z2². */
+#define SLUT_SIN_QUARTER(h, z, z2, z4)                                                                     \
+    ((h) + ((h) * (z)) * (((-1.0 / 6.0 + (z) * (1.0 / 120.0)) + (z2) * (-1.0 / 5040.0 + (z) * (1.0 / 362880.0))) + \
+                          (z4) * ((-1.0 / 39916800.0 + (z) * (1.0 / 6227020800.0)) +                          \
+                                  (z2) * (-1.0 / 1307674368000.0 + (z) * (1.0 / 355687428096000.0)))))
+#define SLUT_COS_QUARTER(z, z2, z4)                                                                        \
+    (1.0 - (z) * (0.5 + (z) * (((-1.0 / 24.0 + (z) * (1.0 / 720.0)) + (z2) * (-1.0 / 40320.0 + (z) * (1.0 / 3628800.0))) + \
+                               (z4) * ((-1.0 / 479001600.0 + (z) * (1.0 / 87178291200.0)) +                  \
+                                       (z2) * (-1.0 / 20922789888000.0 + (z) * (1.0 / 6402373705728000.0))))))
 SLUT_FN void slut_sincos_quarter(double h, double *sin_h, double *cos_h) {
     double z = h * h, z2 = z * z, z4 = z2 * z2;
     *sin_h = SLUT_SIN_QUARTER(h, z, z2, z4);
