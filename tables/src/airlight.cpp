@@ -492,6 +492,8 @@ struct AirlightScalar4 {
         const double tan_w1 = select_le(0.0, x, ratios[0], ratios[1]);
         const double tan_dv = select_le(0.0, y, ratios[2], ratios[3]);
         if (SLUT_AIRLIGHT_THETA_FITS_ONE_PANEL(tan_dv, w2, c, cos_half)) {
+            if (eight_lanes)
+                return one_panel_radiance8(c, cos_half, sin_half, tan_dv, optical_distance, scale_unattenuated, sin_gamma);
             slut_airlight_geometry g;
             g.c = c;
             g.cos_half = cos_half;
@@ -500,9 +502,7 @@ struct AirlightScalar4 {
             g.optical_distance = optical_distance;
             g.scale_unattenuated = scale_unattenuated;
             g.sin_gamma = sin_gamma;
-            return eight_lanes ? one_panel_radiance8(c, cos_half, sin_half, tan_dv, optical_distance, scale_unattenuated,
-                                                     sin_gamma)
-                               : one_panel_radiance4_inline(g, select_le(0.0, y, ss, dy), select_le(0.0, y, dy, ss));
+            return one_panel_radiance4_inline(g, select_le(0.0, y, ss, dy), select_le(0.0, y, dy, ss));
         }
         if (!t.fast_lookup_) return t.radiance_portable(q);
         const double optical_delta = sigma_t * std::max(s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D), 0.0);
