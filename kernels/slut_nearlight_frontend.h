@@ -76,8 +76,8 @@ SLUT_FN slut_nl_params slut_nl_params_from_dots(double l, double mu_e, double n_
  * s = 0); +∞ where H diverges (the ray runs through the light) or the light sits at O. */
 /* The same with T·H given (H_scaled = slut_nl_H_scaled(p.g, p.S_over_T)): for a caller that
  * computes it while the table's cell is fetched (the runtime's thick radiance). The divide by
- * l comes before E and T·H, which arrive last: it does not wait for them (the thick radiance
- * 6 ns faster per call than with it after them; bench/README.md, "Issue #18's 3-D call"). */
+ * l comes before E and T·H, which arrive last: it does not wait for them (the runtime's thick
+ * radiance 1.07× faster than with it after them; bench/README.md, "Issue #18's 3-D call"). */
 SLUT_FN double slut_nl_assemble_given_H(slut_nl_params p, double sigma_s_per_m, double intensity_w_sr,
                                         double length_m, double transmittance, double E, double H_scaled) {
     if (p.kind != SLUT_NL_OK || !(sigma_s_per_m > 0.0) || !(intensity_w_sr > 0.0) || !(length_m > 0.0))
