@@ -563,22 +563,17 @@ double detail::airlight_radiance_four_lanes(const AirlightTable &table, const Ai
 
 // ------------------------------------------------------------------ batch radiance
 
-// Every query's conditions, then the first query that fails named by its index; all at once
-// per query where every one holds (check_airlight_query per query, out of line and a branch
-// per field, left the batch at 0.93–0.95× the closed form × e^{−σ_t D}, this at 0.99×: four
-// interleaved runs of `scatterlut_bench --benchmark_filter=RadianceBatch/0`, 2-core AMD EPYC VM).
+namespace {
+// Every query's conditions at once (require_every_query), the first failing query named by
+// its index (check_airlight_query per query, out of line and a branch per field, left the
+// batch at 0.93–0.95× the closed form × e^{−σ_t D}, this at 0.99×: four interleaved runs of
+// `scatterlut_bench --benchmark_filter=RadianceBatch/0`, 2-core AMD EPYC VM).
 void check_airlight_queries(const AirlightQuery *queries, size_t count) {
-    bool all_valid = true;
-    for (size_t i = 0; i < count; ++i) all_valid &= detail::all_hold(query_conditions(queries[i]));
-    if (all_valid) return;
-    for (size_t i = 0; i < count; ++i) {
-        try {
-            check_airlight_query(queries[i]);
-        } catch (const std::invalid_argument &e) {
-            throw std::invalid_argument("query " + std::to_string(i) + ": " + e.what());
-        }
-    }
+    detail::require_every_query(
+        queries, count, [](const AirlightQuery &q) { return detail::all_hold(query_conditions(q)); },
+        [](const AirlightQuery &q) { check_airlight_query(q); });
 }
+} // namespace
 
 #if SLUT_HAVE_SIMD4
 // Four queries at a time. Each block of four is set up in 4-lane vectors (the arithmetic of

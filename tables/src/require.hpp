@@ -1,7 +1,7 @@
 // The runtime library's argument check (internal; not installed): throws
 // std::invalid_argument(message) unless `ok`. Two overloads so that the hot paths (radiance
-// checks every query) pass literal messages without building a std::string; and lists of
-// conditions (Condition) for the query checks.
+// checks every query) pass literal messages without building a std::string; lists of
+// conditions (Condition) for the query checks; a batch's check of all its queries.
 #pragma once
 
 #include <array>
@@ -40,6 +40,24 @@ inline bool all_hold(const std::array<Condition, N> &conditions, std::index_sequ
 template <size_t N>
 inline bool all_hold(const std::array<Condition, N> &conditions) {
     return all_hold(conditions, std::make_index_sequence<N>{});
+}
+
+// A batch's check, before its first query is computed: holds(q) (a query type's conditions
+// folded, all_hold) for every query at once, no branch per query; only where one fails,
+// check(q) (which throws, naming the field) query by query, rethrown naming the first failing
+// query's index ("query 5: ...").
+template <class Query, class Holds, class Check>
+void require_every_query(const Query *queries, size_t count, Holds holds, Check check) {
+    bool all_valid = true;
+    for (size_t i = 0; i < count; ++i) all_valid &= holds(queries[i]);
+    if (all_valid) return;
+    for (size_t i = 0; i < count; ++i) {
+        try {
+            check(queries[i]);
+        } catch (const std::invalid_argument &e) {
+            throw std::invalid_argument("query " + std::to_string(i) + ": " + e.what());
+        }
+    }
 }
 
 } // namespace scatterlut::detail
