@@ -75,16 +75,20 @@ SLUT_FN slut_nl_params slut_nl_params_from_dots(double l, double mu_e, double n_
  * Fresnel factor (1 without one). 0 without light (kind ≠ SLUT_NL_OK, σ_s = 0, I0 = 0,
  * s = 0); +∞ where H diverges (the ray runs through the light) or the light sits at O. */
 /* The same with T·H given (H_scaled = slut_nl_H_scaled(p.g, p.S_over_T)): for a caller that
- * computes it while the table's cell is fetched (the runtime's thick radiance). The divide by
- * l comes before E and T·H, which arrive last: it does not wait for them (the runtime's thick
- * radiance 1.07× faster than with it after them; bench/README.md, "Issue #18's 3-D call"). */
+ * computes it while the table's cell is fetched (the runtime's thick radiance). 1/l is a
+ * divide of its own, which does not wait for E and T·H, the values that arrive last (the
+ * runtime's thick radiance 1.07× faster than with the divide by l after them; bench/README.md,
+ * "Issue #18's 3-D call"), and the product takes it last: the factors before it are 0 where
+ * E is (σ_s/l may overflow: 1e202/1e-154), and 1/l is finite (l = √(x² + y² + z²) is 0 or
+ * above 1e-162 in double, 1e-23 in float). */
 SLUT_FN double slut_nl_assemble_given_H(slut_nl_params p, double sigma_s_per_m, double intensity_w_sr,
                                         double length_m, double transmittance, double E, double H_scaled) {
     if (p.kind != SLUT_NL_OK || !(sigma_s_per_m > 0.0) || !(intensity_w_sr > 0.0) || !(length_m > 0.0))
         return 0.0;
     if (!(p.distance_m > 0.0)) return SLUT_HUGE_VAL;
     if (!SLUT_ISFINITE(H_scaled)) return SLUT_HUGE_VAL;
-    return transmittance * sigma_s_per_m * SLUT_INV_4PI * intensity_w_sr / p.distance_m * E * H_scaled;
+    double inv_distance = 1.0 / p.distance_m;
+    return transmittance * sigma_s_per_m * SLUT_INV_4PI * intensity_w_sr * E * H_scaled * inv_distance;
 }
 SLUT_FN double slut_nl_assemble(slut_nl_params p, double sigma_s_per_m, double intensity_w_sr, double length_m,
                                 double transmittance, double E) {

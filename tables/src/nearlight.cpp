@@ -446,7 +446,7 @@ struct NearLightBatch {
         const double H_scaled = angle_over_sine_simd(p.g, sg);
         // slut_nl_assemble_given_H with E = 1, times E: the assembly's multiplies and divide
         // run beside the cell's loads and the decoding exp instead of after them (and its
-        // divide by l beside H: the assembly divides before multiplying by T·H).
+        // 1/l beside H).
         const double scale = slut_nl_assemble_given_H(p, q.sigma_s_per_m, q.intensity_W_per_sr, q.length_m,
                                                       exit_transmittance(q), 1.0, H_scaled);
         *L = scale * std::exp(detail::lerp_cell<3>(corner, frac));
