@@ -69,15 +69,20 @@ SLUT_FN double slut_nl_unit_from_S_between(double T, double g, double S, double 
 }
 
 #ifndef SLUT_SHADER
-/* sin(x)/x (1 at x = 0). */
-SLUT_FN double slut_nl_sinc(double x) { return (x == 0.0) ? 1.0 : sin(x) / x; }
+#include "slut_nearlight_lanes.h" /* slut_nl_lanes: the node placement on a lane vector */
+
+/* sin(x)/x (1 at x = 0), on a double or a lane vector (slut_nl_lanes). */
+#define SLUT_NL_SINC(x) (((x) == 0.0) ? 1.0 : sin(x) / (x))
+/* S from ρ = q/(1 − q) = σ/(T·T H∞) by the law of sines, on a double or a lane vector:
+ * T·ρ·sinc(qθ)/sinc((1 − q)θ) with q = ρ/(1 + ρ) and 1 − q = 1/(1 + ρ), both to full precision. */
+#define SLUT_NL_S_OF_ODDS(T, rho, theta) \
+    ((T) * (rho) * SLUT_NL_SINC((rho) / (1.0 + (rho)) * (theta)) / SLUT_NL_SINC(1.0 / (1.0 + (rho)) * (theta)))
 
 /* The inverse: S with slut_nl_depth_odds(T, g, S) = sigma (> 0), given T·H∞ = TH_inf
  * (slut_nl_H_scaled(g, ∞)) and θ = acos g = atan2(√(1 − g²), g). */
 SLUT_FN double slut_nl_S_from_depth_odds_given(double T, double TH_inf, double theta, double sigma) {
-    double rho = sigma / (T * TH_inf);                        /* q/(1 − q) */
-    double q = rho / (1.0 + rho), q_out = 1.0 / (1.0 + rho); /* q and 1 − q, both to full precision */
-    return T * rho * slut_nl_sinc(q * theta) / slut_nl_sinc(q_out * theta);
+    double rho = sigma / (T * TH_inf); /* q/(1 − q) */
+    return SLUT_NL_S_OF_ODDS(T, rho, theta);
 }
 SLUT_FN double slut_nl_S_from_depth_odds(double T, double g, double sigma) {
     return slut_nl_S_from_depth_odds_given(T, slut_nl_H_scaled(g, SLUT_HUGE_VAL), atan2(slut_nl_sin_from_cos(g), g),
@@ -131,8 +136,12 @@ SLUT_FN double slut_nl_S_node(const slut_axis *a, double T, double g, int i) {
     return slut_nl_S_from_unit(a, T, g, (double)i / (double)(a->count - 1));
 }
 
-/* S_out[k] = slut_nl_S_node(a, T, g, first + k) for k < count (the same values), the shared
- * part of the q map computed once. */
+/* S_out[k] = slut_nl_S_node(a, T, g, first + k) for k < count: the shared part of the q map
+ * computed once, the nodes' exp and two sines on a lane vector (the device's double16: on
+ * PoCL 3.1 a scalar builtin costs many times a vector one per element, docs/POCL.md; the E4
+ * kernel spent ~6 % of its time on these as scalar calls, bench/README.md). The same
+ * expressions as slut_nl_slab_S; on the device the vector builtins may round differently
+ * from the scalar ones by an ulp. */
 SLUT_FN void slut_nl_S_nodes(const slut_axis *a, double T, double g, int first, int count, double *S_out) {
     if (a->warp != SLUT_WARP_NL_QODDS) {
         for (int k = 0; k < count; ++k) S_out[k] = slut_axis_node(a, first + k);
@@ -140,7 +149,18 @@ SLUT_FN void slut_nl_S_nodes(const slut_axis *a, double T, double g, int first, 
     }
     slut_nl_slab s;
     slut_nl_slab_at(a, T, g, &s);
-    for (int k = 0; k < count; ++k) S_out[k] = slut_nl_slab_S(&s, (double)(first + k) / (double)(a->count - 1));
+    const double last = (double)(a->count - 1);
+    for (int k0 = 0; k0 < count; k0 += SLUT_NL_LANE_WIDTH) {
+        double node_at[SLUT_NL_LANE_WIDTH], S_at[SLUT_NL_LANE_WIDTH];
+        for (int k = 0; k < SLUT_NL_LANE_WIDTH; ++k) node_at[k] = (double)(first + k0 + k); /* past count: unused */
+        slut_nl_lanes x = slut_nl_lanes_load(node_at) / last;
+        slut_nl_lanes rho = exp(s.lo + x * (s.hi - s.lo)) / (s.T * s.TH_inf);
+        slut_nl_lanes S = SLUT_NL_S_OF_ODDS(s.T, rho, s.theta);
+        S = SLUT_NL_LANES_SELECT(S, SLUT_NL_LANES_SPLAT(s.S_min), x <= 0.0);
+        S = SLUT_NL_LANES_SELECT(S, SLUT_NL_LANES_SPLAT(s.S_max), x >= 1.0);
+        slut_nl_lanes_store(S, S_at);
+        for (int k = 0; k < SLUT_NL_LANE_WIDTH && k0 + k < count; ++k) S_out[k0 + k] = S_at[k];
+    }
 }
 #endif /* !SLUT_SHADER */
 
