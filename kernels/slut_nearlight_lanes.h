@@ -26,7 +26,8 @@
  *   slut_nl_lanes_load             a block from SLUT_NL_LANE_WIDTH consecutive doubles;
  *   slut_nl_lanes_max / _min       the largest / smallest element;
  *   slut_nl_expm1_8                expm1 of 8 consecutive doubles (a double8 on the device:
- *                                  the layer variable's node offsets, slut_nl_E_sweep).
+ *                                  the layer variable's node offsets, slut_nl_E_sweep);
+ *   slut_nl_lanes_exp2             2^v per element (the node loop's attenuation).
  * Lane comparisons combine with & (a vector comparison is −1/0 per element, a scalar one 1/0:
  * never mix the two). */
 #if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
@@ -50,23 +51,26 @@ SLUT_FN double slut_nl_lanes_min(slut_nl_lanes v) {
     return fmin(c.x, c.y);
 }
 SLUT_FN void slut_nl_expm1_8(const double *x, double *out) { vstore8(expm1(vload8(0, x)), 0, out); }
-/* exp on a lane vector, the same double as the device's builtin exp gives: PoCL 3.1's vector
- * exp (SLEEF's Sleef_exp_u10, ≤ 1 ulp) restated operation by operation with its constants:
- * x = k ln 2 + s, k = rint(x/ln 2) (ln 2 in two parts, two fma), e^s by a polynomial of degree
- * 12 (its odd and even parts in s², then twice u·s + 1, all fma), then u·2^k rounded once
- * (SLEEF: 2^⌊k/2⌋ · 2^(k−⌊k/2⌋), both factors normal down to x = −1000, so a subnormal result
- * is rounded once, in the second product); +∞ above 709.78, 0 below −1000. Only the integer
- * steps are cheaper than the builtin's (it rounds each 4-lane quarter with vroundpd and builds
- * 2^k in 32-bit halves; PoCL's rint on a double16 is a long software sequence):
- *  - on a CPU with AVX-512 (the macro SLUT_NL_EXP_AVX512, from the compiler's target), k by
+/* 2^v on a lane vector: the node loop's attenuation (slut_nl_E_sweep), ≤ 3 ulps (measured
+ * 2.41 over 1.5 million arguments: NearLightKernel.LaneExp2WithinThreeUlps). v = k + f with
+ * k = rint(v) and f = v − k ∈ [−½, ½] exact; 2^f = 1 + f·P(f), P of degree 9 by Horner's
+ * rule, the minimax polynomial for the relative error (kernels/exp2_minimax.py: 2.2e-16, ~1.5
+ * ulps, with its double coefficients; the rest is the rounding of the Horner steps); then
+ * u·2^k rounded once, as 2^⌊k/2⌋ · 2^(k−⌊k/2⌋) (both factors normal for |v| ≤ 1100, so a
+ * subnormal result is rounded once, in the second product). 0 below v = −1100, +∞ above
+ * 1100; NaN stays NaN. The sweep's sums carry ~1e-13 of quadrature error (the default
+ * tolerance 1e-11): a few ulps per node change no table's measured accuracy.
+ * Why not the builtin exp: PoCL 3.1's vector exp (SLEEF's Sleef_exp_u10, ≤ 1 ulp) reduces by
+ * ln 2 in two parts and evaluates a polynomial of degree 12, after the caller's −T·(τ + η q)
+ * and the ·1/ln 2: ~21 multiplies and multiply-adds per element. In base 2 the sweep folds
+ * −T·log2(e) into its per-node factors (v = c0 + c1·q, one multiply-add), the reduction is
+ * one subtraction and the polynomial of degree 10: ~14 (bench/README.md, "The node loop in
+ * base 2", measures what that saves). The integer steps:
+ *  - on a CPU with AVX-512 (SLUT_NL_EXP_AVX512, from the compiler's target), k by
  *    vrndscalepd (round to nearest even, as rint) and u·2^k by vscalefpd, which rounds the
- *    exact product once, as the two products do: two instructions per 8 lanes for the ~10
- *    integer steps and two multiplies of 2^k. E3 64³ kernel: ~1.09× less CPU time
- *    (bench/README.md, "the node loop's exp, second round");
- *  - elsewhere, k by the 1.5·2^52 shift below and 2^k built in 64-bit lanes (~1.08× less
- *    than the builtin; "the node loop's exp").
- * The node loop of slut_nl_E_sweep spends most of its time in this exp; tables unchanged bit
- * for bit. Test: NearLightKernel.LaneExpMatchesBuiltin (1.3 million arguments, none differs). */
+ *    exact product once, as the two products do: the same doubles;
+ *  - elsewhere, k by the 1.5·2^52 shift below and 2^k built in 64-bit lanes (PoCL's rint on a
+ *    double16 is a long software sequence). */
 #ifndef SLUT_NL_EXP_AVX512 /* a build option -DSLUT_NL_EXP_AVX512=0 selects the portable steps (test) */
 #if defined(__AVX512F__) && defined(__has_builtin)
 #if __has_builtin(__builtin_ia32_scalefpd512_mask) && __has_builtin(__builtin_ia32_rndscalepd_mask)
@@ -77,10 +81,9 @@ SLUT_FN void slut_nl_expm1_8(const double *x, double *out) { vstore8(expm1(vload
 #ifndef SLUT_NL_EXP_AVX512
 #define SLUT_NL_EXP_AVX512 0
 #endif
-SLUT_FN slut_nl_lanes slut_nl_lanes_exp(slut_nl_lanes x) {
+SLUT_FN slut_nl_lanes slut_nl_lanes_exp2(slut_nl_lanes v) {
 #pragma OPENCL FP_CONTRACT OFF
-    /* No contraction: v is rounded before it is rounded to an integer, as in the builtin. */
-    slut_nl_lanes v = x * 0x1.71547652b82fep+0;
+    /* No contraction: the polynomial's fma are explicit, f = v − k is exact. */
 #if SLUT_NL_EXP_AVX512
     /* vrndscalepd, immediate 8: round to nearest even, no precision exception. */
     slut_nl_lanes k;
@@ -88,27 +91,25 @@ SLUT_FN slut_nl_lanes slut_nl_lanes_exp(slut_nl_lanes x) {
     k.hi = __builtin_ia32_rndscalepd_mask(v.hi, 8, v.hi, (uchar)0xff, 4);
 #else
     /* k = rint(v) as (v + 1.5·2^52) − 1.5·2^52: the sum rounds v to an integer (ties to even,
-     * as rint) wherever |v| < 2^51, i.e. |x| < 1.5e15, and its low mantissa bits are k.
-     * Beyond, both results are replaced (0 or +∞) by the last two selects. */
+     * as rint) wherever |v| < 2^51, and its low mantissa bits are k. Beyond, the last two
+     * selects replace the result. */
     const slut_nl_lanes round_shift = (slut_nl_lanes)(0x1.8p52);
     slut_nl_lanes shifted = v + round_shift;
     slut_nl_lanes k = shifted - round_shift;
 #endif
-    slut_nl_lanes s = fma(k, -0x1.62e42fefa3000p-1, x);
-    s = fma(k, -0x1.3de6af278ece6p-42, s);
-    slut_nl_lanes s2 = s * s;
-    slut_nl_lanes even = fma(0x1.1e0c670afff06p-29, s2, 0x1.27e5d38a23654p-22);
-    even = fma(even, s2, 0x1.a01a0127f883ap-16);
-    even = fma(even, s2, 0x1.6c16c16c3396bp-10);
-    even = fma(even, s2, 0x1.55555555554f9p-5);
-    even = fma(even, s2, 0.5);
-    slut_nl_lanes odd = fma(0x1.af6c36f75740cp-26, s2, 0x1.71ddef633fb47p-19);
-    odd = fma(odd, s2, 0x1.a01a01b4421fdp-13);
-    odd = fma(odd, s2, 0x1.111111110e7a5p-7);
-    odd = fma(odd, s2, 0x1.555555555555ep-3);
-    slut_nl_lanes u = fma(odd, s, even);
-    u = fma(u, s, 1.0);
-    u = fma(u, s, 1.0);
+    slut_nl_lanes f = v - k;
+    /* exp2 polynomial begin (kernels/exp2_minimax.py --check compares these) */
+    slut_nl_lanes u = fma(0x1.e3a907013632dp-28, f, 0x1.b671b301aba6fp-24);
+    u = fma(u, f, 0x1.62c147a345fe0p-20);
+    u = fma(u, f, 0x1.ffcb58ca1f55dp-17);
+    u = fma(u, f, 0x1.4309126c01410p-13);
+    u = fma(u, f, 0x1.5d87fe9b8f035p-10);
+    u = fma(u, f, 0x1.3b2ab6fbd6d03p-7);
+    u = fma(u, f, 0x1.c6b08d703e17ap-5);
+    u = fma(u, f, 0x1.ebfbdff82c431p-3);
+    u = fma(u, f, 0x1.62e42fefa3a12p-1);
+    /* exp2 polynomial end */
+    u = fma(u, f, 1.0);
 #if SLUT_NL_EXP_AVX512
     /* vscalefpd: u·2^⌊k⌋ rounded once (mask all lanes, current rounding mode). */
     u.lo = __builtin_ia32_scalefpd512_mask(u.lo, k.lo, u.lo, (uchar)0xff, 4);
@@ -118,8 +119,8 @@ SLUT_FN slut_nl_lanes slut_nl_lanes_exp(slut_nl_lanes x) {
     u = u * as_double16(as_ulong16(j_half + 1023) << 52);
     u = u * as_double16(as_ulong16(j - j_half + 1023) << 52);
 #endif
-    u = select(u, (slut_nl_lanes)(SLUT_HUGE_VAL), x > 0x1.62e42fe102c83p+9);
-    return select(u, (slut_nl_lanes)(0.0), x < -1000.0);
+    u = select(u, (slut_nl_lanes)(SLUT_HUGE_VAL), v > 1100.0);
+    return select(u, (slut_nl_lanes)(0.0), v < -1100.0);
 }
 #else
 #define SLUT_NL_LANE_WIDTH 1
@@ -134,7 +135,7 @@ SLUT_FN double slut_nl_lanes_min(slut_nl_lanes v) { return v; }
 SLUT_FN void slut_nl_expm1_8(const double *x, double *out) {
     for (int k = 0; k < 8; ++k) out[k] = expm1(x[k]);
 }
-SLUT_FN slut_nl_lanes slut_nl_lanes_exp(slut_nl_lanes x) { return exp(x); }
+SLUT_FN slut_nl_lanes slut_nl_lanes_exp2(slut_nl_lanes v) { return exp2(v); }
 #endif
 #define SLUT_NL_LANE_BLOCKS (SLUT_NL_MAX_LANES / SLUT_NL_LANE_WIDTH) /* blocks of a full group */
 
