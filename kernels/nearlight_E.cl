@@ -24,13 +24,11 @@
 #error "the kernel takes one r group as one lane vector"
 #endif
 
-/* SLUT_NL_THIN_OF_X on 8 lanes: its expm1 is needed only for x in [SLUT_TINY, 40]; where no
- * lane is, its other two branches alone (the same values). A lane vector's expm1 cost ~9 %
- * of the 4-D table (bench/README.md); the r lanes ascend, so x = S_eff·(1 + r)/r descends
- * along them and the half of small r often needs none. */
-double8 thin_of_x(double8 x) {
-    return any(SLUT_NL_THIN_NEEDS_EXPM1(x)) ? SLUT_NL_THIN_OF_X(x) : SLUT_NL_THIN_OF_X_WITHOUT_EXPM1(x);
-}
+/* SLUT_NL_THIN_OF_X on the lane vector, its expm1 (needed for x in [SLUT_TINY, 40]) by
+ * slut_nl_lanes_expm1 (≤ 2 ulps; PoCL's double8 expm1 took ~8 % of the 4-D table's time,
+ * bench/README.md, "The node loop in base 2"). The value base is an encoding (E = B·e^stored):
+ * a reader's B from its own expm1 differs by a few ulps, which E then carries. */
+slut_nl_lanes thin_of_x(slut_nl_lanes x) { return SLUT_NL_THIN_OF_X_GIVEN(x, slut_nl_lanes_expm1(-x)); }
 
 __kernel void nearlight_ln_E(__global double *out,
                              __global const double *T_nodes, int T_count,
@@ -74,17 +72,13 @@ __kernel void nearlight_ln_E(__global double *out,
                  * expressions for 0 < S_eff < ∞; the scalar function's guards otherwise). */
                 double S_eff = slut_nl_base_depth(T, S[i]);
                 if (S_eff > 0.0 && S_eff <= SLUT_INFINITE_ABOVE) {
-                    slut_nl_lanes x = S_eff * thin_x_per_S;
-                    slut_nl_lanes thin;
-                    thin.lo = thin_of_x(x.lo);
-                    thin.hi = thin_of_x(x.hi);
-                    E_lanes /= SLUT_NL_BASE_OF_THIN(floor_T, rise_T, thin);
+                    E_lanes /= SLUT_NL_BASE_OF_THIN(floor_T, rise_T, thin_of_x(S_eff * thin_x_per_S));
                 } else {
                     for (int l = 0; l < lanes; ++l) E_i[l] /= slut_nl_E_base_from(floor_T, rise_T, T, r[l], S[i]);
                     E_lanes = slut_nl_lanes_load(E_i);
                 }
             }
-            slut_nl_lanes_store(log(E_lanes), E_i);
+            slut_nl_lanes_store(slut_nl_lanes_log(E_lanes), E_i);
             for (int l = 0; l < lanes; ++l)
                 out[(((size_t)(iS0 + i) * r_count + (size_t)(ir0 + l)) * g_count + ig) * T_count + iT] = E_i[l];
         }

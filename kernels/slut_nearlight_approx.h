@@ -51,7 +51,9 @@ SLUT_FN double slut_distant_light_radiance(double sigma_s_per_m, double sigma_a_
 #define SLUT_NL_THIN_X(r, S) (((r) > SLUT_INFINITE_ABOVE) ? (S) : (S) * ((1.0 + (r)) / (r)))
 #define SLUT_NL_THIN_NEEDS_EXPM1(x) ((x) >= SLUT_TINY && (x) <= 40.0)
 #define SLUT_NL_THIN_OF_X_WITHOUT_EXPM1(x) (((x) < SLUT_TINY) ? 1.0 : 1.0 / (x)) /* x outside [TINY, 40] */
-#define SLUT_NL_THIN_OF_X(x) (SLUT_NL_THIN_NEEDS_EXPM1(x) ? -expm1(-(x)) / (x) : SLUT_NL_THIN_OF_X_WITHOUT_EXPM1(x))
+/* The second step given em = expm1(−x) (the caller's: the table kernel's lane expm1), one divide. */
+#define SLUT_NL_THIN_OF_X_GIVEN(x, em) (((x) < SLUT_TINY) ? 1.0 : (SLUT_NL_THIN_NEEDS_EXPM1(x) ? -(em) : 1.0) / (x))
+#define SLUT_NL_THIN_OF_X(x) SLUT_NL_THIN_OF_X_GIVEN(x, expm1(-(x)))
 SLUT_FN double slut_nl_E_thin(double r, double S) {
     SLUT_CHECK_GE(r, 0.0);
     SLUT_CHECK_GE(S, 0.0);

@@ -27,7 +27,9 @@
  *   slut_nl_lanes_max / _min       the largest / smallest element;
  *   slut_nl_expm1_8                expm1 of 8 consecutive doubles (a double8 on the device:
  *                                  the layer variable's node offsets, slut_nl_E_sweep);
- *   slut_nl_lanes_exp2             2^v per element (the node loop's attenuation).
+ *   slut_nl_lanes_exp2             2^v per element (the node loop's attenuation);
+ *   slut_nl_lanes_expm1            e^y − 1 per element (the 4-D table kernel's value base);
+ *   slut_nl_lanes_log              ln x per element (the table kernel's stored ln E).
  * Lane comparisons combine with & (a vector comparison is −1/0 per element, a scalar one 1/0:
  * never mix the two). */
 #if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
@@ -122,6 +124,79 @@ SLUT_FN slut_nl_lanes slut_nl_lanes_exp2(slut_nl_lanes v) {
     u = select(u, (slut_nl_lanes)(SLUT_HUGE_VAL), v > 1100.0);
     return select(u, (slut_nl_lanes)(0.0), v < -1100.0);
 }
+/* e^y − 1 on a lane vector: the 4-D table kernel's value base (kernels/nearlight_E.cl), ≤ 3
+ * ulps for y ≤ 0, the side the value base uses (measured 2.35), ≤ 4 for y > 0 (3.31, next to
+ * y = ln 2/2, where the two terms below partly cancel; NearLightKernel.LaneExpm1WithinUlpBounds);
+ * −1 below y = −42 (e^y < 2^−60), +∞ above
+ * 709.78, NaN for NaN. k = rint(y·log2(e)) as in slut_nl_lanes_exp2, f = (y − k ln 2)·log2(e);
+ * 2^f − 1 = f·P(f), P of degree 10, the minimax polynomial for the
+ * relative error of 2^f − 1 down to f = 0 (kernels/exp2_minimax.py, "expm1": 5.4e-17 with its
+ * double coefficients); then e^y − 1 = 2^k·(2^f − 1) + (2^k − 1), the product exact and
+ * 2^k − 1 exact for −53 ≤ k ≤ 53, one rounding in the sum. Why not the builtin: PoCL 3.1's
+ * expm1 on a double8 works in double-double arithmetic; the E4 kernel spent ~8 % of its time
+ * in it (bench/README.md, "The node loop in base 2"). */
+SLUT_FN slut_nl_lanes slut_nl_lanes_expm1(slut_nl_lanes y) {
+#pragma OPENCL FP_CONTRACT OFF
+    y = select(y, (slut_nl_lanes)(-42.0), y < -42.0); /* e^y < 2^−60 below: the result rounds to −1 */
+    slut_nl_lanes v = y * 0x1.71547652b82fep+0;
+    const slut_nl_lanes round_shift = (slut_nl_lanes)(0x1.8p52);
+    slut_nl_lanes shifted = v + round_shift;
+    slut_nl_lanes k = shifted - round_shift;
+    /* f = (y − k ln 2)·log2(e), ln 2 in two parts (k ln 2's high part exact): v itself carries
+     * |v|·2^−53 of rounding, which 2^f would turn into a relative error of ~1e-14 at y = 500. */
+    slut_nl_lanes f = fma(k, -0x1.62e42fefa3000p-1, y);
+    f = fma(k, -0x1.3de6af278ece6p-42, f) * 0x1.71547652b82fep+0;
+    /* expm1 polynomial begin (kernels/exp2_minimax.py --check compares these) */
+    slut_nl_lanes u = fma(0x1.e8cab8bb70565p-32, f, 0x1.e605d28d2356ap-28);
+    u = fma(u, f, 0x1.b525a092b3f97p-24);
+    u = fma(u, f, 0x1.62bfd4b4acfe9p-20);
+    u = fma(u, f, 0x1.ffcbfc1ea3ac5p-17);
+    u = fma(u, f, 0x1.4309130958e7cp-13);
+    u = fma(u, f, 0x1.5d87fe78b211ap-10);
+    u = fma(u, f, 0x1.3b2ab6fba1e40p-7);
+    u = fma(u, f, 0x1.c6b08d704a08ep-5);
+    u = fma(u, f, 0x1.ebfbdff82c598p-3);
+    u = fma(u, f, 0x1.62e42fefa39efp-1);
+    /* expm1 polynomial end */
+    /* 2^k for k ≤ 1023; k = 1024 (y within ln 2/2 of the overflow) as 2·(2^1023·(…)), the
+     * doubling exact or +∞. */
+    long16 j = min(as_long16(shifted) - as_long16(round_shift), (long16)(1023));
+    slut_nl_lanes two_k = as_double16((j + 1023) << 52);
+    slut_nl_lanes e = fma(two_k, f * u, two_k - 1.0);
+    e = select(e, 2.0 * e, k > 1023.0);
+    return select(e, (slut_nl_lanes)(SLUT_HUGE_VAL), y > 0x1.62e42fefa39efp+9);
+}
+/* ln x on a lane vector: the table kernel's stored ln E (kernels/nearlight_E.cl), < 1 ulp
+ * (NearLightKernel.LaneLogWithinAnUlp). fdlibm's __ieee754_log as musl's log.c has it, its
+ * operations and constants unchanged, on 64-bit lanes: x = 2^k·m with m ∈ [√½, √2) (a
+ * subnormal x scaled by 2^54 first), f = m − 1, s = f/(2 + f), ln m = f − ½f² + s(½f² + R(s²)),
+ * R of degree 14 in s (Lg1 … Lg7), ln 2 in two parts. −∞ for ±0, NaN below 0 and for NaN, +∞
+ * for +∞. Why not the builtin: PoCL 3.1's double16 log (SLEEF's, in double-double arithmetic)
+ * took ~5 % of the 4-D table kernel's time (bench/README.md, "The node loop in base 2"). */
+SLUT_FN slut_nl_lanes slut_nl_lanes_log(slut_nl_lanes x) {
+#pragma OPENCL FP_CONTRACT OFF
+    /* No contraction: fdlibm's error analysis assumes each operation rounded on its own. */
+    long16 subnormal = (x < 0x1p-1022) & (x > 0.0);
+    slut_nl_lanes xs = select(x, x * 0x1p54, subnormal);
+    /* Reduce into [√½, √2): shift the exponent field so that m's high word starts at √½'s. */
+    long16 bits = as_long16(xs) + ((long16)(0x3ff00000L - 0x3fe6a09eL) << 32);
+    long16 k = (bits >> 52) - 0x3ff + select((long16)(0), (long16)(-54), subnormal);
+    slut_nl_lanes m = as_double16((bits & 0x000fffffffffffffL) + (0x3fe6a09eL << 32));
+    slut_nl_lanes f = m - 1.0;
+    slut_nl_lanes hfsq = 0.5 * f * f;
+    slut_nl_lanes s = f / (2.0 + f);
+    slut_nl_lanes z = s * s;
+    slut_nl_lanes w = z * z;
+    slut_nl_lanes t1 = w * (3.999999999940941908e-01 + w * (2.222219843214978396e-01 + w * 1.531383769920937332e-01));
+    slut_nl_lanes t2 = z * (6.666666666666735130e-01 +
+                            w * (2.857142874366239149e-01 + w * (1.818357216161805012e-01 + w * 1.479819860511658591e-01)));
+    slut_nl_lanes R = t2 + t1;
+    slut_nl_lanes dk = convert_double16(k);
+    slut_nl_lanes ln = s * (hfsq + R) + dk * 1.90821492927058770002e-10 - hfsq + f + dk * 6.93147180369123816490e-01;
+    ln = select(ln, (slut_nl_lanes)(-SLUT_HUGE_VAL), x == 0.0);
+    ln = select(ln, (slut_nl_lanes)(SLUT_HUGE_VAL), x == SLUT_HUGE_VAL);
+    return select(ln, (slut_nl_lanes)(NAN), !(x >= 0.0));
+}
 #else
 #define SLUT_NL_LANE_WIDTH 1
 typedef double slut_nl_lanes;
@@ -136,6 +211,8 @@ SLUT_FN void slut_nl_expm1_8(const double *x, double *out) {
     for (int k = 0; k < 8; ++k) out[k] = expm1(x[k]);
 }
 SLUT_FN slut_nl_lanes slut_nl_lanes_exp2(slut_nl_lanes v) { return exp2(v); }
+SLUT_FN slut_nl_lanes slut_nl_lanes_expm1(slut_nl_lanes y) { return expm1(y); }
+SLUT_FN slut_nl_lanes slut_nl_lanes_log(slut_nl_lanes x) { return log(x); }
 #endif
 #define SLUT_NL_LANE_BLOCKS (SLUT_NL_MAX_LANES / SLUT_NL_LANE_WIDTH) /* blocks of a full group */
 

@@ -253,6 +253,162 @@ TEST(NearLightKernel, LaneExp2WithinThreeUlps) {
     EXPECT_EQ(differing, 0u) << "arguments where the device's integer steps and the portable ones differ";
 }
 
+// slut_nl_lanes_expm1 (the 4-D table kernel's value base, kernels/slut_nearlight_lanes.h)
+// against long double expm1l: ≤ 3 ulps for y ≤ 0, the value base's side (−40 ≤ y ≤ 0 and
+// down to −1000), ≤ 4 for y > 0 (up to the overflow); next to 0, the rint ties of y·log2(e);
+// +∞ above 709.78, −1 below −42, NaN for NaN, 0 for ±0.
+TEST(NearLightKernel, LaneExpm1WithinUlpBounds) {
+    scatterlut::Device &dev = device();
+    const std::string source = "#include \"slut_nearlight_lanes.h\"\n"
+                               "__kernel void lane_expm1(__global const double *y, __global double *out) {\n"
+                               "    size_t i = get_global_id(0);\n"
+                               "    vstore16(slut_nl_lanes_expm1(vload16(i, y)), i, out);\n"
+                               "}\n";
+    cl::Program program(dev.context(), source);
+    const std::vector<cl::Device> devices = dev.context().getInfo<CL_CONTEXT_DEVICES>();
+    const std::string options = std::string("-cl-std=CL1.2 -I ") + SLUT_SOURCE_DIR + "/kernels";
+    try {
+        program.build(devices, options.c_str());
+    } catch (const cl::Error &) {
+        FAIL() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(devices[0]);
+    }
+    std::vector<double> y;
+    std::mt19937_64 rng(20261203);
+    auto uniform = [&](double a, double b, int n) {
+        std::uniform_real_distribution<double> d(a, b);
+        for (int i = 0; i < n; ++i) y.push_back(d(rng));
+    };
+    auto log_uniform = [&](double a, double b, int n, double sign) { // |y| log-uniform in [a, b]
+        std::uniform_real_distribution<double> d(std::log(a), std::log(b));
+        for (int i = 0; i < n; ++i) y.push_back(sign * std::exp(d(rng)));
+    };
+    uniform(-40.0, 0.0, 1 << 19);        // the value base's −x
+    uniform(-1000.0, 720.0, 1 << 18);    // everything
+    uniform(-0.35, 0.35, 1 << 18);       // k = 0: the polynomial alone
+    log_uniform(1e-300, 1.0, 1 << 16, -1.0); // next to 0, both signs
+    log_uniform(1e-300, 1.0, 1 << 16, 1.0);
+    uniform(705.0, 710.0, 1 << 14);      // k = 1024 and the overflow
+    for (int k = -70; k <= 1030; ++k)    // y·log2(e) at and next to half-integers (rint's ties)
+        for (double t : {-1.0, 0.0, 1.0}) y.push_back(std::nextafter((k + 0.5) * 0.6931471805599453, t * 1e300));
+    const double inf = std::numeric_limits<double>::infinity();
+    for (double x : {0.0, -0.0, inf, -inf, std::numeric_limits<double>::quiet_NaN(), 5e-324, -5e-324, -41.6,
+                     -41.58883083359672, 709.782712893384, 709.7827128933841, 1e300, -1e300})
+        y.push_back(x);
+    while (y.size() % 16 != 0) y.push_back(0.0);
+    std::vector<double> out(y.size());
+    const cl::Buffer in = scatterlut::input_buffer(dev, y);
+    const cl::Buffer out_buffer(dev.context(), CL_MEM_WRITE_ONLY, y.size() * sizeof(double));
+    cl::Kernel kernel(program, "lane_expm1");
+    kernel.setArg(0, in);
+    kernel.setArg(1, out_buffer);
+    dev.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(y.size() / 16), cl::NullRange);
+    dev.queue().enqueueReadBuffer(out_buffer, CL_TRUE, 0, y.size() * sizeof(double), out.data());
+    double worst_negative = 0, worst_positive = 0, worst_base = 0;
+    for (size_t i = 0; i < y.size(); ++i) {
+        const double x = y[i], got = out[i];
+        if (std::isnan(x)) {
+            ASSERT_TRUE(std::isnan(got));
+            continue;
+        }
+        if (x == 0.0) {
+            ASSERT_EQ(got, 0.0); // +0 for −0 too (no caller tells them apart)
+            continue;
+        }
+        const long double want = expm1l(static_cast<long double>(x));
+        if (want > static_cast<long double>(std::numeric_limits<double>::max())) {
+            ASSERT_EQ(got, inf) << "y = " << x;
+            continue;
+        }
+        const double want_d = static_cast<double>(want);
+        const long double ulp = std::fabs(static_cast<long double>(std::nextafter(want_d, inf)) - want_d);
+        const double ulps = static_cast<double>(std::fabs(static_cast<long double>(got) - want) / ulp);
+        // y > 0 at k = 1 (y ≈ ln 2/2 … 3 ln 2/2): 2(2^f − 1) and 2 − 1 partly cancel.
+        ASSERT_LE(ulps, x > 0.0 ? 4.0 : 3.0) << "y = " << x << ": " << got << ", expm1l " << want_d;
+        (x > 0.0 ? worst_positive : worst_negative) = std::max(x > 0.0 ? worst_positive : worst_negative, ulps);
+        if (x >= -40.0 && x <= 0.0) worst_base = std::max(worst_base, ulps);
+    }
+    std::printf("lane expm1: %zu arguments, worst %.3f ulp for y <= 0 (%.3f on [-40, 0], the value base's range), "
+                "%.3f for y > 0 (%s)\n",
+                y.size(), worst_negative, worst_base, worst_positive, dev.info().platform_name.c_str());
+}
+
+// slut_nl_lanes_log (the table kernel's stored ln E, kernels/slut_nearlight_lanes.h) against
+// long double logl: < 1 ulp over the doubles, subnormals and the neighbourhood of 1 included
+// (where ln x is smallest against x); −∞ for ±0, NaN below 0 and for NaN, +∞ for +∞.
+TEST(NearLightKernel, LaneLogWithinAnUlp) {
+    scatterlut::Device &dev = device();
+    const std::string source = "#include \"slut_nearlight_lanes.h\"\n"
+                               "__kernel void lane_log(__global const double *x, __global double *out) {\n"
+                               "    size_t i = get_global_id(0);\n"
+                               "    vstore16(slut_nl_lanes_log(vload16(i, x)), i, out);\n"
+                               "}\n";
+    cl::Program program(dev.context(), source);
+    const std::vector<cl::Device> devices = dev.context().getInfo<CL_CONTEXT_DEVICES>();
+    const std::string options = std::string("-cl-std=CL1.2 -I ") + SLUT_SOURCE_DIR + "/kernels";
+    try {
+        program.build(devices, options.c_str());
+    } catch (const cl::Error &) {
+        FAIL() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(devices[0]);
+    }
+    std::vector<double> x;
+    std::mt19937_64 rng(20261203);
+    auto log_uniform = [&](double lo_exp2, double hi_exp2, int n) { // x = 2^U(lo, hi)
+        std::uniform_real_distribution<double> d(lo_exp2, hi_exp2);
+        for (int i = 0; i < n; ++i) x.push_back(std::exp2(d(rng)));
+    };
+    auto uniform = [&](double a, double b, int n) {
+        std::uniform_real_distribution<double> d(a, b);
+        for (int i = 0; i < n; ++i) x.push_back(d(rng));
+    };
+    log_uniform(-1074.0, 1024.0, 1 << 19); // every binade, subnormals included
+    log_uniform(-80.0, 1.0, 1 << 19);      // the kernel's E and E/B
+    uniform(0.7, 1.45, 1 << 18);           // k = 0: the polynomial alone
+    uniform(1.0 - 1e-6, 1.0 + 1e-6, 1 << 14); // next to 1
+    uniform(0.5, 2.0, 1 << 16);
+    const double inf = std::numeric_limits<double>::infinity();
+    for (double v : {0.0, -0.0, inf, -inf, -1.0, -5e-324, std::numeric_limits<double>::quiet_NaN(), 5e-324,
+                     0x1p-1022, std::nextafter(0x1p-1022, 0.0), 1.0, std::nextafter(1.0, 0.0), std::nextafter(1.0, 2.0),
+                     0.7071067811865476, 1.4142135623730951, std::numeric_limits<double>::max()})
+        x.push_back(v);
+    while (x.size() % 16 != 0) x.push_back(1.0);
+    std::vector<double> out(x.size());
+    const cl::Buffer in = scatterlut::input_buffer(dev, x);
+    const cl::Buffer out_buffer(dev.context(), CL_MEM_WRITE_ONLY, x.size() * sizeof(double));
+    cl::Kernel kernel(program, "lane_log");
+    kernel.setArg(0, in);
+    kernel.setArg(1, out_buffer);
+    dev.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(x.size() / 16), cl::NullRange);
+    dev.queue().enqueueReadBuffer(out_buffer, CL_TRUE, 0, x.size() * sizeof(double), out.data());
+    double worst_ulps = 0, worst_at = 0;
+    for (size_t i = 0; i < x.size(); ++i) {
+        const double v = x[i], got = out[i];
+        if (std::isnan(v) || v < 0.0) {
+            ASSERT_TRUE(std::isnan(got)) << "x = " << v;
+            continue;
+        }
+        if (v == 0.0) {
+            ASSERT_EQ(got, -inf) << "x = " << v;
+            continue;
+        }
+        if (v == inf) {
+            ASSERT_EQ(got, inf);
+            continue;
+        }
+        const long double want = logl(static_cast<long double>(v));
+        if (want == 0.0L) {
+            ASSERT_EQ(got, 0.0) << "x = " << v;
+            continue;
+        }
+        const double want_d = static_cast<double>(want);
+        const long double ulp = std::fabs(static_cast<long double>(std::nextafter(want_d, inf)) - want_d);
+        const double ulps = static_cast<double>(std::fabs(static_cast<long double>(got) - want) / ulp);
+        ASSERT_LT(ulps, 1.0) << "x = " << v << ": " << got << ", logl " << want_d;
+        if (ulps > worst_ulps) worst_ulps = ulps, worst_at = v;
+    }
+    std::printf("lane log: %zu arguments, worst %.3f ulp at x = %.17g (%s)\n", x.size(), worst_ulps, worst_at,
+                dev.info().platform_name.c_str());
+}
+
 TEST(NearLightIdentity, ZeroRIsTheAirlight) {
     for (double T : {0.05, 1.0, 7.0})
         for (double g : {-0.9, -0.3, 0.0, 0.6, 0.99})
