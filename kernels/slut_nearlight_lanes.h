@@ -53,6 +53,16 @@ SLUT_FN double slut_nl_lanes_min(slut_nl_lanes v) {
     return fmin(c.x, c.y);
 }
 SLUT_FN void slut_nl_expm1_8(const double *x, double *out) { vstore8(expm1(vload8(0, x)), 0, out); }
+/* k = rint(v) (ties to even) for |v| < 2^51, as a double and (*j) as a 64-bit integer:
+ * v + 1.5·2^52 rounds v to an integer, whose low mantissa bits are k. Beyond, the callers'
+ * selects replace their results. (PoCL's rint on a double16 is a long software sequence.) */
+SLUT_FN slut_nl_lanes slut_nl_lanes_rint_shift(slut_nl_lanes v, long16 *j) {
+#pragma OPENCL FP_CONTRACT OFF
+    const slut_nl_lanes round_shift = (slut_nl_lanes)(0x1.8p52);
+    slut_nl_lanes shifted = v + round_shift;
+    *j = as_long16(shifted) - as_long16(round_shift);
+    return shifted - round_shift;
+}
 /* 2^v on a lane vector: the node loop's attenuation (slut_nl_E_sweep), ≤ 3 ulps (measured
  * 2.41 over 1.5 million arguments: NearLightKernel.LaneExp2WithinThreeUlps). v = k + f with
  * k = rint(v) and f = v − k ∈ [−½, ½] exact; 2^f = 1 + f·P(f), P of degree 9 by Horner's
@@ -71,8 +81,8 @@ SLUT_FN void slut_nl_expm1_8(const double *x, double *out) { vstore8(expm1(vload
  *  - on a CPU with AVX-512 (SLUT_NL_EXP_AVX512, from the compiler's target), k by
  *    vrndscalepd (round to nearest even, as rint) and u·2^k by vscalefpd, which rounds the
  *    exact product once, as the two products do: the same doubles;
- *  - elsewhere, k by the 1.5·2^52 shift below and 2^k built in 64-bit lanes (PoCL's rint on a
- *    double16 is a long software sequence). */
+ *  - elsewhere, k by the 1.5·2^52 shift (slut_nl_lanes_rint_shift) and 2^k built in 64-bit
+ *    lanes. */
 #ifndef SLUT_NL_EXP_AVX512 /* a build option -DSLUT_NL_EXP_AVX512=0 selects the portable steps (test) */
 #if defined(__AVX512F__) && defined(__has_builtin)
 #if __has_builtin(__builtin_ia32_scalefpd512_mask) && __has_builtin(__builtin_ia32_rndscalepd_mask)
@@ -92,12 +102,8 @@ SLUT_FN slut_nl_lanes slut_nl_lanes_exp2(slut_nl_lanes v) {
     k.lo = __builtin_ia32_rndscalepd_mask(v.lo, 8, v.lo, (uchar)0xff, 4);
     k.hi = __builtin_ia32_rndscalepd_mask(v.hi, 8, v.hi, (uchar)0xff, 4);
 #else
-    /* k = rint(v) as (v + 1.5·2^52) − 1.5·2^52: the sum rounds v to an integer (ties to even,
-     * as rint) wherever |v| < 2^51, and its low mantissa bits are k. Beyond, the last two
-     * selects replace the result. */
-    const slut_nl_lanes round_shift = (slut_nl_lanes)(0x1.8p52);
-    slut_nl_lanes shifted = v + round_shift;
-    slut_nl_lanes k = shifted - round_shift;
+    long16 j;
+    slut_nl_lanes k = slut_nl_lanes_rint_shift(v, &j);
 #endif
     slut_nl_lanes f = v - k;
     /* exp2 polynomial begin (kernels/exp2_minimax.py --check compares these) */
@@ -117,7 +123,7 @@ SLUT_FN slut_nl_lanes slut_nl_lanes_exp2(slut_nl_lanes v) {
     u.lo = __builtin_ia32_scalefpd512_mask(u.lo, k.lo, u.lo, (uchar)0xff, 4);
     u.hi = __builtin_ia32_scalefpd512_mask(u.hi, k.hi, u.hi, (uchar)0xff, 4);
 #else
-    long16 j = as_long16(shifted) - as_long16(round_shift), j_half = j >> 1;
+    long16 j_half = j >> 1;
     u = u * as_double16(as_ulong16(j_half + 1023) << 52);
     u = u * as_double16(as_ulong16(j - j_half + 1023) << 52);
 #endif
@@ -138,10 +144,8 @@ SLUT_FN slut_nl_lanes slut_nl_lanes_exp2(slut_nl_lanes v) {
 SLUT_FN slut_nl_lanes slut_nl_lanes_expm1(slut_nl_lanes y) {
 #pragma OPENCL FP_CONTRACT OFF
     y = select(y, (slut_nl_lanes)(-42.0), y < -42.0); /* e^y < 2^−60 below: the result rounds to −1 */
-    slut_nl_lanes v = y * 0x1.71547652b82fep+0;
-    const slut_nl_lanes round_shift = (slut_nl_lanes)(0x1.8p52);
-    slut_nl_lanes shifted = v + round_shift;
-    slut_nl_lanes k = shifted - round_shift;
+    long16 j;
+    slut_nl_lanes k = slut_nl_lanes_rint_shift(y * 0x1.71547652b82fep+0, &j);
     /* f = (y − k ln 2)·log2(e), ln 2 in two parts (k ln 2's high part exact): v itself carries
      * |v|·2^−53 of rounding, which 2^f would turn into a relative error of ~1e-14 at y = 500. */
     slut_nl_lanes f = fma(k, -0x1.62e42fefa3000p-1, y);
@@ -160,7 +164,7 @@ SLUT_FN slut_nl_lanes slut_nl_lanes_expm1(slut_nl_lanes y) {
     /* expm1 polynomial end */
     /* 2^k for k ≤ 1023; k = 1024 (y within ln 2/2 of the overflow) as 2·(2^1023·(…)), the
      * doubling exact or +∞. */
-    long16 j = min(as_long16(shifted) - as_long16(round_shift), (long16)(1023));
+    j = min(j, (long16)(1023));
     slut_nl_lanes two_k = as_double16((j + 1023) << 52);
     slut_nl_lanes e = fma(two_k, f * u, two_k - 1.0);
     e = select(e, 2.0 * e, k > 1023.0);

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <random>
 #include <vector>
@@ -143,6 +145,81 @@ TEST(NearLightKernel, MatchesHostSweepAndReferenceAtHardCorners) {
 // r = 0 (the light in the surface plane, its whole path inside): N is the airlight
 // integral with cos γ = −g, per unit σ_s p I0 σ_t: N = σ_t^{-1}·L_air/(σ_s p I0) with
 // D = T/σ_t. Two independent computations (slut_nearlight.h's E·H and the airlight θ-integral) agree.
+namespace {
+
+// One of kernels/slut_nearlight_lanes.h's lane functions (double16 → double16) on the device:
+// `function` applied to `args` (their count a multiple of 16), the program built with
+// `extra_options` (a failed build throws with its log). Also whether the build took the
+// AVX-512 integer steps (SLUT_NL_EXP_AVX512).
+struct LaneResults {
+    std::vector<double> out;
+    int avx512;
+};
+LaneResults run_lane_function(const std::string &function, const std::vector<double> &args,
+                              const std::string &extra_options = "") {
+    scatterlut::Device &dev = device();
+    const std::string source = "#include \"slut_nearlight_lanes.h\"\n"
+                               "__kernel void lane_function(__global const double *in, __global double *out) {\n"
+                               "    size_t i = get_global_id(0);\n"
+                               "    vstore16(" + function + "(vload16(i, in)), i, out);\n"
+                               "}\n"
+                               "__kernel void exp_variant(__global int *avx512) { avx512[0] = SLUT_NL_EXP_AVX512; }\n";
+    cl::Program program(dev.context(), source);
+    const std::vector<cl::Device> devices = dev.context().getInfo<CL_CONTEXT_DEVICES>();
+    const std::string options = std::string("-cl-std=CL1.2 -I ") + SLUT_SOURCE_DIR + "/kernels " + extra_options;
+    try {
+        program.build(devices, options.c_str());
+    } catch (const cl::Error &) {
+        throw std::runtime_error("build of " + function + " failed: " +
+                                 program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(devices[0]));
+    }
+    LaneResults r{std::vector<double>(args.size()), -1};
+    const cl::Buffer in = scatterlut::input_buffer(dev, args);
+    const cl::Buffer out(dev.context(), CL_MEM_WRITE_ONLY, args.size() * sizeof(double));
+    cl::Kernel kernel(program, "lane_function");
+    kernel.setArg(0, in);
+    kernel.setArg(1, out);
+    dev.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(args.size() / 16), cl::NullRange);
+    dev.queue().enqueueReadBuffer(out, CL_TRUE, 0, args.size() * sizeof(double), r.out.data());
+    const cl::Buffer variant(dev.context(), CL_MEM_WRITE_ONLY, sizeof(int));
+    cl::Kernel variant_kernel(program, "exp_variant");
+    variant_kernel.setArg(0, variant);
+    dev.queue().enqueueNDRangeKernel(variant_kernel, cl::NullRange, cl::NDRange(1), cl::NullRange);
+    dev.queue().enqueueReadBuffer(variant, CL_TRUE, 0, sizeof(int), &r.avx512);
+    return r;
+}
+
+// Arguments for a lane function: n uniform draws from [a, b], or (log_uniform) 2^U(a, b) times
+// sign; `finish` appends the special values and pads to a multiple of 16 with `pad`.
+struct LaneArguments {
+    std::vector<double> values;
+    std::mt19937_64 rng{20261203};
+    void uniform(double a, double b, int n) {
+        std::uniform_real_distribution<double> d(a, b);
+        for (int i = 0; i < n; ++i) values.push_back(d(rng));
+    }
+    void log_uniform(double a, double b, int n, double sign = 1.0) {
+        std::uniform_real_distribution<double> d(a, b);
+        for (int i = 0; i < n; ++i) values.push_back(sign * std::exp2(d(rng)));
+    }
+    void finish(std::initializer_list<double> specials, double pad) {
+        values.insert(values.end(), specials);
+        while (values.size() % 16 != 0) values.push_back(pad);
+    }
+};
+
+// |got − want| in ulps of the double nearest want (want finite and non-zero).
+double ulps_from(double got, long double want) {
+    const double want_d = static_cast<double>(want);
+    const long double ulp = std::fabs(static_cast<long double>(std::nextafter(want_d, HUGE_VAL)) - want_d);
+    return static_cast<double>(std::fabs(static_cast<long double>(got) - want) / ulp);
+}
+
+const double kInf = std::numeric_limits<double>::infinity();
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+} // namespace
+
 // slut_nl_lanes_exp2 (the sweep's node-loop 2^v, kernels/slut_nearlight_lanes.h) against
 // long double exp2l: ≤ 3 ulps wherever the result is normal, ≤ 3 subnormal steps below, 0 below
 // v = −1100, +∞ above 1100, NaN for NaN; over the whole range the sweep can reach and beyond
@@ -151,62 +228,34 @@ TEST(NearLightKernel, MatchesHostSweepAndReferenceAtHardCorners) {
 // the device's own (AVX-512 where its compiler targets it) and the portable one; they must
 // give the same doubles (vscalefpd rounds u·2^k once, as the two products do).
 TEST(NearLightKernel, LaneExp2WithinThreeUlps) {
-    scatterlut::Device &dev = device();
-    const std::string source = "#include \"slut_nearlight_lanes.h\"\n"
-                               "__kernel void lane_exp2(__global const double *v, __global double *out) {\n"
-                               "    size_t i = get_global_id(0);\n"
-                               "    vstore16(slut_nl_lanes_exp2(vload16(i, v)), i, out);\n"
-                               "}\n"
-                               "__kernel void exp_variant(__global int *avx512) { avx512[0] = SLUT_NL_EXP_AVX512; }\n";
-    std::vector<double> v;
-    std::mt19937_64 rng(20261203);
-    auto uniform = [&](double a, double b, int n) {
-        std::uniform_real_distribution<double> d(a, b);
-        for (int i = 0; i < n; ++i) v.push_back(d(rng));
-    };
-    uniform(-1150.0, 1150.0, 1 << 19);   // everything: overflow, normal, subnormal, zero
-    uniform(-90.0, 0.0, 1 << 19);        // the sweep's exponents −T(τ + η q)·log2(e)
-    uniform(-0.5, 0.5, 1 << 18);         // the polynomial alone (k = 0)
-    uniform(-1e-6, 1e-6, 1 << 14);       // 2^v next to 1
-    uniform(-1076.0, -1020.0, 1 << 17);  // subnormal results (the two-step 2^k)
-    uniform(-1100.5, -1099.5, 1 << 12);  // the zero cut-off
-    uniform(1023.0, 1100.5, 1 << 12);    // overflow and the +∞ cut-off
-    for (int k = -1100; k <= 1100; ++k)  // v at and next to half-integers (rint's ties)
-        for (double t : {-1.0, 0.0, 1.0}) v.push_back(std::nextafter(k + 0.5, t * 1e300));
-    const double inf = std::numeric_limits<double>::infinity();
-    for (double x : {0.0, -0.0, inf, -inf, std::numeric_limits<double>::quiet_NaN(), 1e-300, -1e-300, 5e-324,
-                     -1e300, 1e300, 1023.9999999999999, 1024.0, -1022.0, -1074.0, -1075.0, -1100.0, 1100.0})
-        v.push_back(x);
-    while (v.size() % 16 != 0) v.push_back(0.0);
+    LaneArguments a;
+    a.uniform(-1150.0, 1150.0, 1 << 19);   // everything: overflow, normal, subnormal, zero
+    a.uniform(-90.0, 0.0, 1 << 19);        // the sweep's exponents −T(τ + η q)·log2(e)
+    a.uniform(-0.5, 0.5, 1 << 18);         // the polynomial alone (k = 0)
+    a.uniform(-1e-6, 1e-6, 1 << 14);       // 2^v next to 1
+    a.uniform(-1076.0, -1020.0, 1 << 17);  // subnormal results (the two-step 2^k)
+    a.uniform(-1100.5, -1099.5, 1 << 12);  // the zero cut-off
+    a.uniform(1023.0, 1100.5, 1 << 12);    // overflow and the +∞ cut-off
+    for (int k = -1100; k <= 1100; ++k)    // v at and next to half-integers (rint's ties)
+        for (double t : {-1.0, 0.0, 1.0}) a.values.push_back(std::nextafter(k + 0.5, t * 1e300));
+    a.finish({0.0, -0.0, kInf, -kInf, kNaN, 1e-300, -1e-300, 5e-324, -1e300, 1e300, 1023.9999999999999, 1024.0,
+              -1022.0, -1074.0, -1075.0, -1100.0, 1100.0},
+             0.0);
+    const std::vector<double> &v = a.values;
     std::vector<std::vector<double>> results;
-    for (const char *variant : {"", " -DSLUT_NL_EXP_AVX512=0"}) {
-        SCOPED_TRACE(std::string("build options:") + variant);
-        cl::Program program(dev.context(), source);
-        const std::vector<cl::Device> devices = dev.context().getInfo<CL_CONTEXT_DEVICES>();
-        const std::string options = std::string("-cl-std=CL1.2 -I ") + SLUT_SOURCE_DIR + "/kernels" + variant;
-        try {
-            program.build(devices, options.c_str());
-        } catch (const cl::Error &) {
-            FAIL() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(devices[0]);
-        }
-        std::vector<double> out(v.size());
-        const cl::Buffer in = scatterlut::input_buffer(dev, v);
-        const cl::Buffer out_buffer(dev.context(), CL_MEM_WRITE_ONLY, v.size() * sizeof(double));
-        cl::Kernel kernel(program, "lane_exp2");
-        kernel.setArg(0, in);
-        kernel.setArg(1, out_buffer);
-        dev.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(v.size() / 16), cl::NullRange);
-        dev.queue().enqueueReadBuffer(out_buffer, CL_TRUE, 0, v.size() * sizeof(double), out.data());
+    for (const char *variant : {"", "-DSLUT_NL_EXP_AVX512=0"}) {
+        SCOPED_TRACE(std::string("build options: ") + variant);
+        LaneResults r = run_lane_function("slut_nl_lanes_exp2", v, variant);
         double worst_ulps = 0, worst_at = 0;
         size_t normal = 0, subnormal = 0;
         for (size_t i = 0; i < v.size(); ++i) {
-            const double x = v[i], got = out[i];
+            const double x = v[i], got = r.out[i];
             if (std::isnan(x)) {
                 ASSERT_TRUE(std::isnan(got));
                 continue;
             }
             if (x > 1100.0) {
-                ASSERT_EQ(got, inf) << "v = " << x;
+                ASSERT_EQ(got, kInf) << "v = " << x;
                 continue;
             }
             if (x < -1100.0) {
@@ -217,7 +266,7 @@ TEST(NearLightKernel, LaneExp2WithinThreeUlps) {
             if (want > static_cast<long double>(std::numeric_limits<double>::max())) {
                 // Above 2^1024 in long double: the double rounds to +∞ (the last double below
                 // it, 2^1024(1 − 2^−54) and up, rounds to +∞ too).
-                ASSERT_EQ(got, inf) << "v = " << x;
+                ASSERT_EQ(got, kInf) << "v = " << x;
                 continue;
             }
             if (want < static_cast<long double>(std::numeric_limits<double>::min())) {
@@ -227,24 +276,16 @@ TEST(NearLightKernel, LaneExp2WithinThreeUlps) {
                 ++subnormal;
                 continue;
             }
-            const double want_d = static_cast<double>(want);
-            const long double ulp = static_cast<long double>(std::nextafter(want_d, inf)) - want_d;
-            const double ulps = static_cast<double>(std::fabs(static_cast<long double>(got) - want) / ulp);
+            const double ulps = ulps_from(got, want);
             ASSERT_LE(ulps, 3.0) << "v = " << x << ": " << got << ", exp2l " << static_cast<double>(want);
             if (ulps > worst_ulps) worst_ulps = ulps, worst_at = x;
             ++normal;
         }
-        int avx512 = -1;
-        const cl::Buffer out_variant(dev.context(), CL_MEM_WRITE_ONLY, sizeof(int));
-        cl::Kernel variant_kernel(program, "exp_variant");
-        variant_kernel.setArg(0, out_variant);
-        dev.queue().enqueueNDRangeKernel(variant_kernel, cl::NullRange, cl::NDRange(1), cl::NullRange);
-        dev.queue().enqueueReadBuffer(out_variant, CL_TRUE, 0, sizeof(int), &avx512);
-        std::printf("lane exp2%s (SLUT_NL_EXP_AVX512 = %d): %zu arguments, %zu normal results (worst %.3f ulp at "
+        std::printf("lane exp2%s%s (SLUT_NL_EXP_AVX512 = %d): %zu arguments, %zu normal results (worst %.3f ulp at "
                     "v = %.17g), %zu subnormal or zero within 3 steps (%s)\n",
-                    variant, avx512, v.size(), normal, worst_ulps, worst_at, subnormal,
-                    dev.info().platform_name.c_str());
-        results.push_back(std::move(out));
+                    *variant ? " " : "", variant, r.avx512, v.size(), normal, worst_ulps, worst_at, subnormal,
+                    device().info().platform_name.c_str());
+        results.push_back(std::move(r.out));
     }
     size_t differing = 0;
     for (size_t i = 0; i < v.size(); ++i)
@@ -258,54 +299,24 @@ TEST(NearLightKernel, LaneExp2WithinThreeUlps) {
 // down to −1000), ≤ 4 for y > 0 (up to the overflow); next to 0, the rint ties of y·log2(e);
 // +∞ above 709.78, −1 below −42, NaN for NaN, 0 for ±0.
 TEST(NearLightKernel, LaneExpm1WithinUlpBounds) {
-    scatterlut::Device &dev = device();
-    const std::string source = "#include \"slut_nearlight_lanes.h\"\n"
-                               "__kernel void lane_expm1(__global const double *y, __global double *out) {\n"
-                               "    size_t i = get_global_id(0);\n"
-                               "    vstore16(slut_nl_lanes_expm1(vload16(i, y)), i, out);\n"
-                               "}\n";
-    cl::Program program(dev.context(), source);
-    const std::vector<cl::Device> devices = dev.context().getInfo<CL_CONTEXT_DEVICES>();
-    const std::string options = std::string("-cl-std=CL1.2 -I ") + SLUT_SOURCE_DIR + "/kernels";
-    try {
-        program.build(devices, options.c_str());
-    } catch (const cl::Error &) {
-        FAIL() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(devices[0]);
-    }
-    std::vector<double> y;
-    std::mt19937_64 rng(20261203);
-    auto uniform = [&](double a, double b, int n) {
-        std::uniform_real_distribution<double> d(a, b);
-        for (int i = 0; i < n; ++i) y.push_back(d(rng));
-    };
-    auto log_uniform = [&](double a, double b, int n, double sign) { // |y| log-uniform in [a, b]
-        std::uniform_real_distribution<double> d(std::log(a), std::log(b));
-        for (int i = 0; i < n; ++i) y.push_back(sign * std::exp(d(rng)));
-    };
-    uniform(-40.0, 0.0, 1 << 19);        // the value base's −x
-    uniform(-1000.0, 720.0, 1 << 18);    // everything
-    uniform(-0.35, 0.35, 1 << 18);       // k = 0: the polynomial alone
-    log_uniform(1e-300, 1.0, 1 << 16, -1.0); // next to 0, both signs
-    log_uniform(1e-300, 1.0, 1 << 16, 1.0);
-    uniform(705.0, 710.0, 1 << 14);      // k = 1024 and the overflow
-    for (int k = -70; k <= 1030; ++k)    // y·log2(e) at and next to half-integers (rint's ties)
-        for (double t : {-1.0, 0.0, 1.0}) y.push_back(std::nextafter((k + 0.5) * 0.6931471805599453, t * 1e300));
-    const double inf = std::numeric_limits<double>::infinity();
-    for (double x : {0.0, -0.0, inf, -inf, std::numeric_limits<double>::quiet_NaN(), 5e-324, -5e-324, -41.6,
-                     -41.58883083359672, 709.782712893384, 709.7827128933841, 1e300, -1e300})
-        y.push_back(x);
-    while (y.size() % 16 != 0) y.push_back(0.0);
-    std::vector<double> out(y.size());
-    const cl::Buffer in = scatterlut::input_buffer(dev, y);
-    const cl::Buffer out_buffer(dev.context(), CL_MEM_WRITE_ONLY, y.size() * sizeof(double));
-    cl::Kernel kernel(program, "lane_expm1");
-    kernel.setArg(0, in);
-    kernel.setArg(1, out_buffer);
-    dev.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(y.size() / 16), cl::NullRange);
-    dev.queue().enqueueReadBuffer(out_buffer, CL_TRUE, 0, y.size() * sizeof(double), out.data());
+    LaneArguments a;
+    a.uniform(-40.0, 0.0, 1 << 19);           // the value base's −x
+    a.uniform(-1000.0, 720.0, 1 << 18);       // everything
+    a.uniform(-0.35, 0.35, 1 << 18);          // k = 0: the polynomial alone
+    a.log_uniform(-997.0, 0.0, 1 << 16, -1.0); // next to 0, both signs
+    a.log_uniform(-997.0, 0.0, 1 << 16, 1.0);
+    a.uniform(705.0, 710.0, 1 << 14);         // k = 1024 and the overflow
+    for (int k = -70; k <= 1030; ++k)         // y·log2(e) at and next to half-integers (rint's ties)
+        for (double t : {-1.0, 0.0, 1.0})
+            a.values.push_back(std::nextafter((k + 0.5) * 0.6931471805599453, t * 1e300));
+    a.finish({0.0, -0.0, kInf, -kInf, kNaN, 5e-324, -5e-324, -41.6, -42.0, 709.782712893384, 709.7827128933841,
+              1e300, -1e300},
+             0.0);
+    const std::vector<double> &y = a.values;
+    const LaneResults r = run_lane_function("slut_nl_lanes_expm1", y);
     double worst_negative = 0, worst_positive = 0, worst_base = 0;
     for (size_t i = 0; i < y.size(); ++i) {
-        const double x = y[i], got = out[i];
+        const double x = y[i], got = r.out[i];
         if (std::isnan(x)) {
             ASSERT_TRUE(std::isnan(got));
             continue;
@@ -316,82 +327,46 @@ TEST(NearLightKernel, LaneExpm1WithinUlpBounds) {
         }
         const long double want = expm1l(static_cast<long double>(x));
         if (want > static_cast<long double>(std::numeric_limits<double>::max())) {
-            ASSERT_EQ(got, inf) << "y = " << x;
+            ASSERT_EQ(got, kInf) << "y = " << x;
             continue;
         }
-        const double want_d = static_cast<double>(want);
-        const long double ulp = std::fabs(static_cast<long double>(std::nextafter(want_d, inf)) - want_d);
-        const double ulps = static_cast<double>(std::fabs(static_cast<long double>(got) - want) / ulp);
+        const double ulps = ulps_from(got, want);
         // y > 0 at k = 1 (y ≈ ln 2/2 … 3 ln 2/2): 2(2^f − 1) and 2 − 1 partly cancel.
-        ASSERT_LE(ulps, x > 0.0 ? 4.0 : 3.0) << "y = " << x << ": " << got << ", expm1l " << want_d;
-        (x > 0.0 ? worst_positive : worst_negative) = std::max(x > 0.0 ? worst_positive : worst_negative, ulps);
+        ASSERT_LE(ulps, x > 0.0 ? 4.0 : 3.0) << "y = " << x << ": " << got << ", expm1l " << static_cast<double>(want);
+        double &worst = x > 0.0 ? worst_positive : worst_negative;
+        worst = std::max(worst, ulps);
         if (x >= -40.0 && x <= 0.0) worst_base = std::max(worst_base, ulps);
     }
     std::printf("lane expm1: %zu arguments, worst %.3f ulp for y <= 0 (%.3f on [-40, 0], the value base's range), "
                 "%.3f for y > 0 (%s)\n",
-                y.size(), worst_negative, worst_base, worst_positive, dev.info().platform_name.c_str());
+                y.size(), worst_negative, worst_base, worst_positive, device().info().platform_name.c_str());
 }
 
 // slut_nl_lanes_log (the table kernel's stored ln E, kernels/slut_nearlight_lanes.h) against
 // long double logl: < 1 ulp over the doubles, subnormals and the neighbourhood of 1 included
 // (where ln x is smallest against x); −∞ for ±0, NaN below 0 and for NaN, +∞ for +∞.
 TEST(NearLightKernel, LaneLogWithinAnUlp) {
-    scatterlut::Device &dev = device();
-    const std::string source = "#include \"slut_nearlight_lanes.h\"\n"
-                               "__kernel void lane_log(__global const double *x, __global double *out) {\n"
-                               "    size_t i = get_global_id(0);\n"
-                               "    vstore16(slut_nl_lanes_log(vload16(i, x)), i, out);\n"
-                               "}\n";
-    cl::Program program(dev.context(), source);
-    const std::vector<cl::Device> devices = dev.context().getInfo<CL_CONTEXT_DEVICES>();
-    const std::string options = std::string("-cl-std=CL1.2 -I ") + SLUT_SOURCE_DIR + "/kernels";
-    try {
-        program.build(devices, options.c_str());
-    } catch (const cl::Error &) {
-        FAIL() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(devices[0]);
-    }
-    std::vector<double> x;
-    std::mt19937_64 rng(20261203);
-    auto log_uniform = [&](double lo_exp2, double hi_exp2, int n) { // x = 2^U(lo, hi)
-        std::uniform_real_distribution<double> d(lo_exp2, hi_exp2);
-        for (int i = 0; i < n; ++i) x.push_back(std::exp2(d(rng)));
-    };
-    auto uniform = [&](double a, double b, int n) {
-        std::uniform_real_distribution<double> d(a, b);
-        for (int i = 0; i < n; ++i) x.push_back(d(rng));
-    };
-    log_uniform(-1074.0, 1024.0, 1 << 19); // every binade, subnormals included
-    log_uniform(-80.0, 1.0, 1 << 19);      // the kernel's E and E/B
-    uniform(0.7, 1.45, 1 << 18);           // k = 0: the polynomial alone
-    uniform(1.0 - 1e-6, 1.0 + 1e-6, 1 << 14); // next to 1
-    uniform(0.5, 2.0, 1 << 16);
-    const double inf = std::numeric_limits<double>::infinity();
-    for (double v : {0.0, -0.0, inf, -inf, -1.0, -5e-324, std::numeric_limits<double>::quiet_NaN(), 5e-324,
-                     0x1p-1022, std::nextafter(0x1p-1022, 0.0), 1.0, std::nextafter(1.0, 0.0), std::nextafter(1.0, 2.0),
-                     0.7071067811865476, 1.4142135623730951, std::numeric_limits<double>::max()})
-        x.push_back(v);
-    while (x.size() % 16 != 0) x.push_back(1.0);
-    std::vector<double> out(x.size());
-    const cl::Buffer in = scatterlut::input_buffer(dev, x);
-    const cl::Buffer out_buffer(dev.context(), CL_MEM_WRITE_ONLY, x.size() * sizeof(double));
-    cl::Kernel kernel(program, "lane_log");
-    kernel.setArg(0, in);
-    kernel.setArg(1, out_buffer);
-    dev.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(x.size() / 16), cl::NullRange);
-    dev.queue().enqueueReadBuffer(out_buffer, CL_TRUE, 0, x.size() * sizeof(double), out.data());
+    LaneArguments a;
+    a.log_uniform(-1074.0, 1024.0, 1 << 19);     // every binade, subnormals included
+    a.log_uniform(-80.0, 1.0, 1 << 19);          // the kernel's E and E/B
+    a.uniform(0.7, 1.45, 1 << 18);               // k = 0: the polynomial alone
+    a.uniform(1.0 - 1e-6, 1.0 + 1e-6, 1 << 14);  // next to 1
+    a.uniform(0.5, 2.0, 1 << 16);
+    a.finish({0.0, -0.0, kInf, -kInf, -1.0, -5e-324, kNaN, 5e-324, 0x1p-1022, std::nextafter(0x1p-1022, 0.0), 1.0,
+              std::nextafter(1.0, 0.0), std::nextafter(1.0, 2.0), 0.7071067811865476, 1.4142135623730951,
+              std::numeric_limits<double>::max()},
+             1.0);
+    const std::vector<double> &x = a.values;
+    const LaneResults r = run_lane_function("slut_nl_lanes_log", x);
     double worst_ulps = 0, worst_at = 0;
     for (size_t i = 0; i < x.size(); ++i) {
-        const double v = x[i], got = out[i];
+        const double v = x[i], got = r.out[i];
         if (std::isnan(v) || v < 0.0) {
             ASSERT_TRUE(std::isnan(got)) << "x = " << v;
             continue;
         }
-        if (v == 0.0) {
-            ASSERT_EQ(got, -inf) << "x = " << v;
-            continue;
-        }
-        if (v == inf) {
-            ASSERT_EQ(got, inf);
+        if (v == 0.0 || v == kInf) {
+            ASSERT_EQ(got, v == 0.0 ? -kInf : kInf) << "x = " << v;
             continue;
         }
         const long double want = logl(static_cast<long double>(v));
@@ -399,14 +374,12 @@ TEST(NearLightKernel, LaneLogWithinAnUlp) {
             ASSERT_EQ(got, 0.0) << "x = " << v;
             continue;
         }
-        const double want_d = static_cast<double>(want);
-        const long double ulp = std::fabs(static_cast<long double>(std::nextafter(want_d, inf)) - want_d);
-        const double ulps = static_cast<double>(std::fabs(static_cast<long double>(got) - want) / ulp);
-        ASSERT_LT(ulps, 1.0) << "x = " << v << ": " << got << ", logl " << want_d;
+        const double ulps = ulps_from(got, want);
+        ASSERT_LT(ulps, 1.0) << "x = " << v << ": " << got << ", logl " << static_cast<double>(want);
         if (ulps > worst_ulps) worst_ulps = ulps, worst_at = v;
     }
     std::printf("lane log: %zu arguments, worst %.3f ulp at x = %.17g (%s)\n", x.size(), worst_ulps, worst_at,
-                dev.info().platform_name.c_str());
+                device().info().platform_name.c_str());
 }
 
 TEST(NearLightIdentity, ZeroRIsTheAirlight) {
