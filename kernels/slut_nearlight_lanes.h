@@ -133,21 +133,21 @@ SLUT_FN slut_nl_lanes slut_nl_lanes_exp2(slut_nl_lanes v) {
 /* e^y − 1 on a lane vector: the 4-D table kernel's value base (kernels/nearlight_E.cl), ≤ 3
  * ulps for y ≤ 0, the side the value base uses (measured 2.35), ≤ 4 for y > 0 (3.31, next to
  * y = ln 2/2, where the two terms below partly cancel; NearLightKernel.LaneExpm1WithinUlpBounds);
- * −1 below y = −42 (e^y < 2^−60), +∞ above
- * 709.78, NaN for NaN. k = rint(y·log2(e)) as in slut_nl_lanes_exp2, f = (y − k ln 2)·log2(e);
- * 2^f − 1 = f·P(f), P of degree 10, the minimax polynomial for the
- * relative error of 2^f − 1 down to f = 0 (kernels/exp2_minimax.py, "expm1": 5.4e-17 with its
- * double coefficients); then e^y − 1 = 2^k·(2^f − 1) + (2^k − 1), the product exact and
- * 2^k − 1 exact for −53 ≤ k ≤ 53, one rounding in the sum. Why not the builtin: PoCL 3.1's
- * expm1 on a double8 works in double-double arithmetic; the E4 kernel spent ~8 % of its time
- * in it (bench/README.md, "The node loop in base 2"). */
+ * −1 below y = −42 (e^y < 2^−60), +∞ above 709.78, NaN for NaN. k = rint(y·log2(e)) as in
+ * slut_nl_lanes_exp2, f = (y − k ln 2)·log2(e); 2^f − 1 = f·P(f), P of degree 10, the minimax
+ * polynomial for the relative error of 2^f − 1 down to f = 0 (kernels/exp2_minimax.py,
+ * "expm1": 5.4e-17 with its double coefficients); then e^y − 1 = 2^k·(2^f − 1) + (2^k − 1),
+ * the product exact and 2^k − 1 exact for −53 ≤ k ≤ 53, one rounding in the sum.
+ * Why not the builtin: PoCL 3.1's expm1 on a double8 works in double-double arithmetic; the
+ * E4 kernel spent ~8 % of its time in it (bench/README.md, "The node loop in base 2"). */
 SLUT_FN slut_nl_lanes slut_nl_lanes_expm1(slut_nl_lanes y) {
 #pragma OPENCL FP_CONTRACT OFF
     y = select(y, (slut_nl_lanes)(-42.0), y < -42.0); /* e^y < 2^−60 below: the result rounds to −1 */
     long16 j;
     slut_nl_lanes k = slut_nl_lanes_rint_shift(y * 0x1.71547652b82fep+0, &j);
-    /* f = (y − k ln 2)·log2(e), ln 2 in two parts (k ln 2's high part exact): v itself carries
-     * |v|·2^−53 of rounding, which 2^f would turn into a relative error of ~1e-14 at y = 500. */
+    /* f = (y − k ln 2)·log2(e), ln 2 in two parts (k ln 2's high part exact); y·log2(e) itself
+     * carries |y·log2(e)|·2^−53 of rounding, which 2^f would turn into a relative error of
+     * ~1e-14 at y = 500. */
     slut_nl_lanes f = fma(k, -0x1.62e42fefa3000p-1, y);
     f = fma(k, -0x1.3de6af278ece6p-42, f) * 0x1.71547652b82fep+0;
     /* expm1 polynomial begin (kernels/exp2_minimax.py --check compares these) */
