@@ -25,7 +25,7 @@
 #endif
 
 /* SLUT_NL_THIN_OF_X on the lane vector, its expm1 (needed for x in [SLUT_TINY, 40]) by
- * slut_nl_lanes_expm1 (≤ 2 ulps; PoCL's double8 expm1 took ~8 % of the 4-D table's time,
+ * slut_nl_lanes_expm1 (≤ 3 ulps; PoCL's double8 expm1 took ~8 % of the 4-D table's time,
  * bench/README.md, "The node loop in base 2"). The value base is an encoding (E = B·e^stored):
  * a reader's B from its own expm1 differs by a few ulps, which E then carries. */
 slut_nl_lanes thin_of_x(slut_nl_lanes x) { return SLUT_NL_THIN_OF_X_GIVEN(x, slut_nl_lanes_expm1(-x)); }

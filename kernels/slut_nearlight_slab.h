@@ -113,11 +113,15 @@ SLUT_FN void slut_nl_slab_at(const slut_axis *a, double T, double g, slut_nl_sla
     s->S_max = a->max;
 }
 
+/* ρ = σ/(T·T H∞) at unit coordinate x of the slab s, σ = exp(lo + x·(hi − lo)): on a double
+ * or a lane vector x (slut_nl_S_nodes). */
+#define SLUT_NL_SLAB_ODDS(s, x) (exp((s).lo + (x) * ((s).hi - (s).lo)) / ((s).T * (s).TH_inf))
+
 /* Unit coordinate x → S in the slab s; the ends exact. */
 SLUT_FN double slut_nl_slab_S(const slut_nl_slab *s, double x) {
     if (x <= 0.0) return s->S_min;
     if (x >= 1.0) return s->S_max;
-    return slut_nl_S_from_depth_odds_given(s->T, s->TH_inf, s->theta, exp(s->lo + x * (s->hi - s->lo)));
+    return SLUT_NL_S_OF_ODDS(s->T, SLUT_NL_SLAB_ODDS(*s, x), s->theta);
 }
 
 /* Unit coordinate x → S on the slab axis a at (T, g); the ends exact. */
@@ -139,9 +143,9 @@ SLUT_FN double slut_nl_S_node(const slut_axis *a, double T, double g, int i) {
 /* S_out[k] = slut_nl_S_node(a, T, g, first + k) for k < count: the shared part of the q map
  * computed once, the nodes' exp and two sines on a lane vector (the device's double16: on
  * PoCL 3.1 a scalar builtin costs many times a vector one per element, docs/POCL.md; the E4
- * kernel spent ~6 % of its time on these as scalar calls, bench/README.md). The same
- * expressions as slut_nl_slab_S; on the device the vector builtins may round differently
- * from the scalar ones by an ulp. */
+ * kernel 1.02× less CPU time than with scalar calls, bench/README.md). The same expressions
+ * as slut_nl_slab_S; on the device the vector builtins may round differently from the scalar
+ * ones by an ulp. */
 SLUT_FN void slut_nl_S_nodes(const slut_axis *a, double T, double g, int first, int count, double *S_out) {
     if (a->warp != SLUT_WARP_NL_QODDS) {
         for (int k = 0; k < count; ++k) S_out[k] = slut_axis_node(a, first + k);
@@ -154,8 +158,7 @@ SLUT_FN void slut_nl_S_nodes(const slut_axis *a, double T, double g, int first, 
         double node_at[SLUT_NL_LANE_WIDTH], S_at[SLUT_NL_LANE_WIDTH];
         for (int k = 0; k < SLUT_NL_LANE_WIDTH; ++k) node_at[k] = (double)(first + k0 + k); /* past count: unused */
         slut_nl_lanes x = slut_nl_lanes_load(node_at) / last;
-        slut_nl_lanes rho = exp(s.lo + x * (s.hi - s.lo)) / (s.T * s.TH_inf);
-        slut_nl_lanes S = SLUT_NL_S_OF_ODDS(s.T, rho, s.theta);
+        slut_nl_lanes S = SLUT_NL_S_OF_ODDS(s.T, SLUT_NL_SLAB_ODDS(s, x), s.theta);
         S = SLUT_NL_LANES_SELECT(S, SLUT_NL_LANES_SPLAT(s.S_min), x <= 0.0);
         S = SLUT_NL_LANES_SELECT(S, SLUT_NL_LANES_SPLAT(s.S_max), x >= 1.0);
         slut_nl_lanes_store(S, S_at);
