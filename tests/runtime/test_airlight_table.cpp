@@ -393,6 +393,47 @@ TEST(AirlightTable, BatchChecksEveryQueryBeforeWriting) {
     for (double v : out) EXPECT_EQ(v, -1.0);
 }
 
+// The batch checks its queries' fields as one flat array of doubles, two queries per step
+// (airlight.cpp, every_field_in_range): it must refuse exactly what the scalar check refuses,
+// for each field at each position (both halves of a step and an odd last query), at the edges
+// of each range: a bad value named by its query's index, nothing written; a good one passes.
+TEST(AirlightTable, BatchCheckAgreesWithTheScalarCheckPerField) {
+    const double inf = std::numeric_limits<double>::infinity(), nan = std::nan("");
+    const double edges[] = {0.0,  -0.0, -1e-300, std::numeric_limits<double>::denorm_min(), 1.0, kPi, kPi + 1e-15, kPi + 1e-14,
+                            std::numeric_limits<double>::max(), inf, -inf, nan};
+    const scatterlut::AirlightQuery good{0.3, 0.1, 1.0, 5.0, 1.0, 3.0};
+    for (size_t count : {size_t{1}, size_t{2}, size_t{3}, size_t{5}}) {
+        for (size_t at = 0; at < count; ++at) {
+            for (int field = 0; field < 6; ++field) {
+                for (double value : edges) {
+                    std::vector<scatterlut::AirlightQuery> queries(count, good);
+                    double *fields[6] = {&queries[at].sigma_s_per_m, &queries[at].sigma_a_per_m,
+                                         &queries[at].intensity_W_per_sr, &queries[at].distance_m,
+                                         &queries[at].gamma_rad, &queries[at].length_m};
+                    *fields[field] = value;
+                    bool scalar_refuses = false;
+                    try {
+                        scatterlut::check_airlight_query(queries[at]);
+                    } catch (const std::invalid_argument &) {
+                        scalar_refuses = true;
+                    }
+                    std::vector<double> out(count, -1.0);
+                    bool batch_refuses = false;
+                    try {
+                        host_table_f32().radiance(queries.data(), count, out.data());
+                    } catch (const std::invalid_argument &e) {
+                        batch_refuses = true;
+                        EXPECT_NE(std::string(e.what()).find("query " + std::to_string(at)), std::string::npos) << e.what();
+                        for (double v : out) EXPECT_EQ(v, -1.0);
+                    }
+                    EXPECT_EQ(batch_refuses, scalar_refuses) << "count " << count << " query " << at << " field " << field
+                                                             << " value " << value;
+                }
+            }
+        }
+    }
+}
+
 // On the exact axis (γ = 0: sin γ is nudged to 1e-300, the one-panel rule's length is
 // ~1e-300 too) with a strong attenuation e^{−σ_t D} folded into the node exponentials, the
 // product must not underflow before the division by sin γ: the closed-form limit
