@@ -25,8 +25,8 @@
  *   SLUT_NL_LANES_ANY(c)           whether c holds in some element;
  *   slut_nl_lanes_load             a block from SLUT_NL_LANE_WIDTH consecutive doubles;
  *   slut_nl_lanes_max / _min       the largest / smallest element;
- *   slut_nl_expm1_8                expm1 of 8 consecutive doubles (a double8 on the device:
- *                                  the layer variable's node offsets, slut_nl_E_sweep);
+ *   slut_nl_expm1_panel            e^o − 1 at a panel's 8 near-half offsets o and e^D − 1 at its
+ *                                  end D (the layer variable's nodes, slut_nl_E_sweep);
  *   slut_nl_lanes_exp2             2^v per element (the node loop's attenuation);
  *   slut_nl_lanes_expm1            e^y − 1 per element (the 4-D table kernel's value base);
  *   slut_nl_lanes_log              ln x per element (the table kernel's stored ln E).
@@ -52,7 +52,6 @@ SLUT_FN double slut_nl_lanes_min(slut_nl_lanes v) {
     double2 c = fmin(b.lo, b.hi);
     return fmin(c.x, c.y);
 }
-SLUT_FN void slut_nl_expm1_8(const double *x, double *out) { vstore8(expm1(vload8(0, x)), 0, out); }
 /* k = rint(v) (ties to even) for |v| < 2^51, as a double and (*j) as a 64-bit integer:
  * v + 1.5·2^52 rounds v to an integer, whose low mantissa bits are k. Beyond, the callers'
  * selects replace their results. (PoCL's rint on a double16 is a long software sequence.) */
@@ -170,6 +169,16 @@ SLUT_FN slut_nl_lanes slut_nl_lanes_expm1(slut_nl_lanes y) {
     e = select(e, 2.0 * e, k > 1023.0);
     return select(e, (slut_nl_lanes)(SLUT_HUGE_VAL), y > 0x1.62e42fefa39efp+9);
 }
+/* e^o − 1 for the 8 offsets o_near[] (into em[]) and e^D − 1 (returned): one lane vector,
+ * lanes 0–7 the offsets, 8–15 D. Every argument is ≥ 0 here, so ≤ 4 ulps each (above). Why
+ * not the builtin: PoCL 3.1's expm1 on a double8 and a double (SLEEF's, in double-double
+ * arithmetic) took ~4 % of the 3-D table kernel's time (bench/README.md, "The airlight batch's
+ * check and lookups, and the layer variable's expm1"). */
+SLUT_FN double slut_nl_expm1_panel(double D, const double *o_near, double *em) {
+    slut_nl_lanes e = slut_nl_lanes_expm1((double16)(vload8(0, o_near), (double8)(D)));
+    vstore8(e.lo, 0, em);
+    return e.s8;
+}
 /* ln x on a lane vector: the table kernel's stored ln E (kernels/nearlight_E.cl), < 1 ulp
  * (NearLightKernel.LaneLogWithinAnUlp). fdlibm's __ieee754_log as musl's log.c has it, its
  * operations and constants unchanged, on 64-bit lanes: x = 2^k·m with m ∈ [√½, √2) (a
@@ -211,11 +220,12 @@ SLUT_FN slut_nl_lanes slut_nl_lanes_load(const double *p) { return *p; }
 SLUT_FN void slut_nl_lanes_store(slut_nl_lanes v, double *p) { *p = v; }
 SLUT_FN double slut_nl_lanes_max(slut_nl_lanes v) { return v; }
 SLUT_FN double slut_nl_lanes_min(slut_nl_lanes v) { return v; }
-SLUT_FN void slut_nl_expm1_8(const double *x, double *out) {
-    for (int k = 0; k < 8; ++k) out[k] = expm1(x[k]);
-}
 SLUT_FN slut_nl_lanes slut_nl_lanes_exp2(slut_nl_lanes v) { return exp2(v); }
 SLUT_FN slut_nl_lanes slut_nl_lanes_expm1(slut_nl_lanes y) { return expm1(y); }
+SLUT_FN double slut_nl_expm1_panel(double D, const double *o_near, double *em) {
+    for (int k = 0; k < 8; ++k) em[k] = expm1(o_near[k]);
+    return expm1(D);
+}
 SLUT_FN slut_nl_lanes slut_nl_lanes_log(slut_nl_lanes x) { return log(x); }
 #endif
 #define SLUT_NL_LANE_BLOCKS (SLUT_NL_MAX_LANES / SLUT_NL_LANE_WIDTH) /* blocks of a full group */
