@@ -172,8 +172,8 @@ SLUT_FN slut_nl_lanes slut_nl_lanes_expm1(slut_nl_lanes y) {
 /* e^o − 1 for the 8 offsets o_near[] (into em[]) and e^D − 1 (returned): one lane vector,
  * lanes 0–7 the offsets, 8–15 D. Every argument is ≥ 0 here, so ≤ 4 ulps each (above). Why
  * not the builtin: PoCL 3.1's expm1 on a double8 and a double (SLEEF's, in double-double
- * arithmetic) took ~4 % of the 3-D table kernel's time (bench/README.md, "The airlight batch's
- * check and lookups, and the layer variable's expm1"). */
+ * arithmetic) took ~4 % of the 3-D table kernel's time (bench/README.md, "The airlight
+ * batch's check and lookups; the sweep's pow and layer expm1"). */
 SLUT_FN double slut_nl_expm1_panel(double D, const double *o_near, double *em) {
     slut_nl_lanes e = slut_nl_lanes_expm1((double16)(vload8(0, o_near), (double8)(D)));
     vstore8(e.lo, 0, em);

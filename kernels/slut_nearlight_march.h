@@ -249,7 +249,8 @@ SLUT_FN int slut_nl_E_sweep(double T, double g, const double *S, int n_S, const 
     double inv_H = 1.0 / H_next;
     double sg2 = sg * sg, half_peak = -0.5 * g;
     /* refine^15 by six products (a few ulps from pow, nothing the stopping test can see:
-     * PoCL's pow, in double-double arithmetic, took ~2 % of the 3-D table kernel's time). */
+     * PoCL's pow, in double-double arithmetic, took ~2 % of the 3-D table kernel's time;
+     * bench/README.md, "The airlight batch's check and lookups; the sweep's pow …"). */
     double refine2 = refine * refine, refine4 = refine2 * refine2, refine8 = refine4 * refine4;
     double tail_eps = SLUT_NL_TAIL_EPS / (((refine8 * refine4) * refine2) * refine);
     double minus_T_log2e = -T * 0x1.71547652b82fep+0; /* −T·log2(e): the node loop's exponent in base 2 */

@@ -587,9 +587,9 @@ namespace {
 // Whether every field of queries[0 … count) lies in its kQueryRanges range: the queries as
 // one flat array of 6·count doubles, two queries (three 4-lane vectors) per step against the
 // ranges laid out with the same period, the comparisons' masks and-ed. Reads the queries'
-// bytes (trivially copyable doubles), not their fields: no shuffle per query. (The scalar
-// conditions of each query, folded with all_hold, cost the batch ~8 % of its time: 11
-// compare-and-set steps per query; a perf profile of 4096 bench queries, 2-core AMD EPYC VM.)
+// bytes (trivially copyable doubles), not their fields: no shuffle per query. (Each query's
+// conditions folded with all_hold, eleven scalar compare-and-set steps, took ~8 % of the
+// batch's time: bench/README.md, "The airlight batch's check and lookups".)
 SLUT_SIMD4_TARGET bool every_field_in_range(const AirlightQuery *queries, size_t count) {
     using simd4::v4d;
     using simd4::v4l;
@@ -805,7 +805,8 @@ struct AirlightBatch {
         q.size = 0;
     }
 
-    // slut_cell_from_unit on four lanes: each lane's lower node (index[k]) and fraction.
+    // slut_cell_from_unit on four lanes: each lane's lower node (index[k]) and fraction (a
+    // NaN lane clamps to node 0: never an index outside the table).
     SLUT_SIMD4_TARGET static simd4::v4d cells4(simd4::v4d unit, int count, int index[4]) {
         const simd4::v4d position =
             simd4::min4(simd4::max4(unit, simd4::splat(0.0)), simd4::splat(1.0)) * static_cast<double>(count - 1);
@@ -837,7 +838,8 @@ struct AirlightBatch {
         return lerp4(lerp4(corner[0], corner[1], frac_w), lerp4(corner[2], corner[3], frac_w), frac_u);
     }
     // AirlightTable::ln_gs_at for both ends of four queries (one u cell per query). (Query by
-    // query, the cells and lerps took ~10 % of the batch's time on the bench's queries.)
+    // query, the cells and lerps took ~10 % of the batch's time: bench/README.md, "The
+    // airlight batch's check and lookups".)
     SLUT_SIMD4_TARGET static void ln_gs_at4(const AirlightTable &t, simd4::v4d unit_u, simd4::v4d unit_w2,
                                             simd4::v4d unit_w1, simd4::v4d *ln2, simd4::v4d *ln1) {
         int cell_u[4], cell_w2[4], cell_w1[4];
