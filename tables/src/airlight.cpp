@@ -426,6 +426,50 @@ SLUT_SIMD4_TARGET inline double select_le(double a, double b, double if_true, do
     const __m128d mask = _mm_cmp_sd(_mm_set_sd(a), _mm_set_sd(b), _CMP_LE_OQ);
     return _mm_cvtsd_f64(_mm_blendv_pd(_mm_set_sd(if_false), _mm_set_sd(if_true), mask));
 }
+
+// The elementwise functions the set-up below needs, for one query (double) and four (v4d).
+inline double sqrt_of(double x) { return std::sqrt(x); }
+inline double abs_of(double x) { return std::fabs(x); }
+inline double max_of(double x, double y) { return std::max(x, y); }
+SLUT_SIMD4_TARGET inline simd4::v4d sqrt_of(simd4::v4d x) { return simd4::sqrt4(x); }
+SLUT_SIMD4_TARGET inline simd4::v4d abs_of(simd4::v4d x) { return simd4::abs4(x); }
+SLUT_SIMD4_TARGET inline simd4::v4d max_of(simd4::v4d x, double y) { return simd4::max4(x, simd4::splat(y)); }
+
+// slut_airlight_setup_near_end_unscaled's geometry from the sine and cosine of γ/2 (moderate
+// lengths: s, D ≤ 1e100), written once for the scalar call's vector path (AirlightScalar4,
+// Real = double) and the batch (AirlightBatch, four queries in a v4d): the same expressions,
+// so the same values.
+template <class Real>
+struct NearEnd {
+    Real sin_gamma, cos_gamma; // of γ, sin γ ≥ 1e-300 (on the axis: the one-panel rule's length / sin γ stays finite)
+    Real u, c;                 // σ_t D sin γ; 2 σ_t D sin(γ/2)
+    Real d_far;                // the far end's distance from the light, m
+    Real x, ds;                // the far end: x = s − D cos γ (> 0: past the light's foot), ds = D sin γ
+    Real y, ss;                // the light: y = D − s cos γ (> 0: ahead of the far end), ss = s sin γ
+    Real dx, dy;               // d + |x|, d + |y|: d + x for x ≥ 0 and d − x below (never cancels)
+};
+template <class Real>
+SLUT_SIMD4_TARGET inline NearEnd<Real> near_end(Real optical_distance, Real D, Real s, Real sin_half, Real cos_half) {
+    NearEnd<Real> g;
+    g.sin_gamma = max_of(2.0 * sin_half * cos_half, SLUT_TINY);
+    g.cos_gamma = (cos_half - sin_half) * (cos_half + sin_half);
+    g.u = optical_distance * g.sin_gamma;
+    g.c = 2.0 * optical_distance * sin_half;
+    g.d_far = sqrt_of((s - D) * (s - D) + 4.0 * s * D * sin_half * sin_half);
+    g.x = s - D * g.cos_gamma;
+    g.ds = D * g.sin_gamma;
+    g.y = D - s * g.cos_gamma;
+    g.ss = s * g.sin_gamma;
+    g.dx = g.d_far + abs_of(g.x);
+    g.dy = g.d_far + abs_of(g.y);
+    return g;
+}
+// σ_t Δ, Δ = s + d − D ≥ 0 (the far end's extra attenuation e^{−σ_t Δ}, kernels/slut_airlight.h),
+// as s + (s² − 2 s D cos γ)/(d + D): no cancellation.
+template <class Real>
+SLUT_SIMD4_TARGET inline Real optical_delta_of(Real sigma_t, Real D, Real s, const NearEnd<Real> &g) {
+    return sigma_t * max_of(s + (s * s - 2.0 * s * D * g.cos_gamma) / (g.d_far + D), 0.0);
+}
 } // namespace
 
 // The one-panel rule's six node exponentials as one 8-lane exp where the CPU has AVX-512
@@ -496,17 +540,11 @@ struct AirlightScalar4 {
         slut_sincos_quarter(select_le(half, quarter, half, w2), &sin_reduced, &cos_reduced);
         const double sin_half = select_le(half, quarter, sin_reduced, cos_reduced);
         const double cos_half = select_le(half, quarter, cos_reduced, sin_reduced);
-        // slut_airlight_setup_near_end_unscaled (moderate lengths: s, D ≤ 1e100).
-        const double sin_gamma = std::max(2.0 * sin_half * cos_half, SLUT_TINY);
-        const double cos_gamma = (cos_half - sin_half) * (cos_half + sin_half);
-        const double u = optical_distance * sin_gamma;
-        const double c = 2.0 * sigma_t * D * sin_half;
-        const double d_far = std::sqrt((s - D) * (s - D) + 4.0 * s * D * sin_half * sin_half);
-        const double x = s - D * cos_gamma, ds = D * sin_gamma;
-        const double y = D - s * cos_gamma, ss = s * sin_gamma;
-        // d + |x| is d + x for x ≥ 0 and d − x below (never cancels): tan w1 = ds/(d + x) or
-        // (d − x)/ds, tan dv likewise with y and ss.
-        const double dx = d_far + std::fabs(x), dy = d_far + std::fabs(y);
+        const NearEnd<double> geometry = near_end(optical_distance, D, s, sin_half, cos_half);
+        const double sin_gamma = geometry.sin_gamma, u = geometry.u, c = geometry.c, d_far = geometry.d_far;
+        const double x = geometry.x, ds = geometry.ds, y = geometry.y, ss = geometry.ss;
+        const double dx = geometry.dx, dy = geometry.dy;
+        // tan w1 = ds/(d + x) or (d − x)/ds, tan dv likewise with y and ss.
         const v4d ratios = v4d{ds, dx, ss, dy} / v4d{dx, ds, dy, ss};
         const double tan_w1 = select_le(0.0, x, ratios[0], ratios[1]);
         const double tan_dv = select_le(0.0, y, ratios[2], ratios[3]);
@@ -524,7 +562,7 @@ struct AirlightScalar4 {
             return one_panel_radiance4_inline(g, select_le(0.0, y, ss, dy), select_le(0.0, y, dy, ss));
         }
         if (!t.fast_lookup_) return t.radiance_portable(q);
-        const double optical_delta = sigma_t * std::max(s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D), 0.0);
+        const double optical_delta = optical_delta_of(sigma_t, D, s, geometry);
         const v4d angles = simd4::atan4(v4d{tan_w1, tan_dv, 0.0, 0.0}); // w1, dv
         const double w1 = angles[0];
         if (!(w1 >= t.w_min_) || !(u > 0.0) || u > t.u_max_) return t.radiance_portable(q); // asymptotic forms
@@ -707,27 +745,22 @@ struct AirlightBatch {
         const v4d h = simd4::select(low, half, w2), z = h * h, z2 = z * z, z4 = z2 * z2;
         const v4d sin_h = SLUT_SIN_QUARTER(h, z, z2, z4), cos_h = SLUT_COS_QUARTER(z, z2, z4);
         const v4d sin_half = simd4::select(low, sin_h, cos_h), cos_half = simd4::select(low, cos_h, sin_h);
-        const v4d sin_gamma = simd4::max4(2.0 * sin_half * cos_half, simd4::splat(1e-300));
-        const v4d cos_gamma = (cos_half - sin_half) * (cos_half + sin_half);
         const v4d sigma_t = sigma_s + sigma_a;
         const v4d scale_unattenuated = sigma_s * SLUT_INV_4PI * intensity * 2.0 / D;
         const v4d optical_distance = sigma_t * D;
-        const v4d u = optical_distance * sin_gamma;
-        const v4d c = 2.0 * optical_distance * sin_half;
-        const v4d d_far = simd4::sqrt4((s - D) * (s - D) + 4.0 * s * D * sin_half * sin_half);
-        const v4d x = s - D * cos_gamma, ds = D * sin_gamma;
-        const v4d y = D - s * cos_gamma, ss = s * sin_gamma;
-        // d + |x| is d + x for x ≥ 0 and d − x below (never cancels): tan w1 = ds/(d + x) or
-        // (d − x)/ds, tan dv likewise with y and ss, each one divide of the selected sides (the
-        // same values as the scalar call's). The far end's warp argument takes the same sides
-        // (flush_two_sample).
+        const NearEnd<v4d> geometry = near_end(optical_distance, D, s, sin_half, cos_half);
+        const v4d sin_gamma = geometry.sin_gamma, u = geometry.u, c = geometry.c, d_far = geometry.d_far;
+        const v4d x = geometry.x, ds = geometry.ds, y = geometry.y, ss = geometry.ss;
+        const v4d dx = geometry.dx, dy = geometry.dy;
+        // tan w1 = ds/(d + x) or (d − x)/ds, tan dv likewise with y and ss, each one divide of
+        // the selected sides (the same values as the scalar call's). The far end's warp
+        // argument takes the same sides (flush_two_sample).
         const v4l x_ahead = x >= zero, y_ahead = y >= zero;
-        const v4d dx = d_far + simd4::abs4(x), dy = d_far + simd4::abs4(y);
         const v4d far_num = simd4::select(x_ahead, dx, ds), far_den = simd4::select(x_ahead, ds, dx);
         const v4d two_d_dx = (d_far + d_far) * dx;
         const v4d tan_w1 = far_den / far_num;
         const v4d tan_dv = simd4::select(y_ahead, ss, dy) / simd4::select(y_ahead, dy, ss);
-        const v4d optical_delta = sigma_t * simd4::max4(s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D), zero);
+        const v4d optical_delta = optical_delta_of(sigma_t, D, s, geometry);
         // Lanes for the vectors: kind 0 (σ_s, I0, s > 0), finite s, γ/2 > 0 (not through the light).
         // And the plain-product range of slut_airlight_scale_is_plain (the rest: radiance_general).
         const v4d lo = simd4::splat(1e-100), hi = simd4::splat(1e100);
