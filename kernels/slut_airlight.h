@@ -323,6 +323,18 @@ SLUT_STRUCT_END(slut_airlight_geometry);
  * (slut_airlight_setup_far_end; the table radiance needs them only where it samples). */
 /* slut_airlight_setup_near_end_unscaled leaves scale (its exp) to the caller: the runtime
  * folds e^{−σ_t D} into the exponentials it evaluates anyway (tables/src/airlight.cpp). */
+/* Its formulas of the triangle viewer–light–far end, as lane-generic expressions (as
+ * SLUT_AIRLIGHT_THETA_FITS_ONE_PANEL below): the runtime's vector paths evaluate them on
+ * 4-lane vectors (tables/src/airlight.cpp, near_end). sh, ch = sin(γ/2), cos(γ/2); s, D in m.
+ *   SLUT_AIRLIGHT_COS_GAMMA:     cos γ = (ch − sh)(ch + sh), accurate where γ → π/2 too;
+ *   SLUT_AIRLIGHT_FAR_DISTANCE2: d² = (s − D)² + 4 s D sh², the far end's squared distance
+ *                                from the light (moderate lengths: no square under- or overflows);
+ *   SLUT_AIRLIGHT_DELTA:         Δ = s + d − D as s + (s² − 2 s D cos γ)/(d + D), no
+ *                                cancellation (moderate lengths).
+ * One line each: GLSL before 4.20 has no line continuation. */
+#define SLUT_AIRLIGHT_COS_GAMMA(sh, ch) (((ch) - (sh)) * ((ch) + (sh)))
+#define SLUT_AIRLIGHT_FAR_DISTANCE2(s, D, sh) (((s) - (D)) * ((s) - (D)) + 4.0 * (s) * (D) * (sh) * (sh))
+#define SLUT_AIRLIGHT_DELTA(s, D, cos_gamma, d_far) ((s) + ((s) * (s) - 2.0 * (s) * (D) * (cos_gamma)) / ((d_far) + (D)))
 SLUT_FN slut_airlight_geometry slut_airlight_setup_near_end_unscaled(double sigma_s, double sigma_a, double intensity,
                                                                      double distance, double sin_half, double cos_half,
                                                                      double w2, double length) {
@@ -336,7 +348,7 @@ SLUT_FN slut_airlight_geometry slut_airlight_setup_near_end_unscaled(double sigm
      * artefact), and c, u would overflow into ∞·0 in the integrands. */
     if (!(sigma_t * D < SLUT_INFINITE_ABOVE)) { g.kind = 1; return g; }
     double sg = fmax(2.0 * sin_half * cos_half, SLUT_TINY);
-    double cos_gamma = (cos_half - sin_half) * (cos_half + sin_half);
+    double cos_gamma = SLUT_AIRLIGHT_COS_GAMMA(sin_half, cos_half);
     g.sin_gamma = sg;
     g.sin_half = sin_half;
     g.cos_half = cos_half;
@@ -363,14 +375,14 @@ SLUT_FN slut_airlight_geometry slut_airlight_setup_near_end_unscaled(double sigm
      * units of max(s, D) and Δ's quotient without s² (same value, other rounding). */
     double m = fmax(s, D);
     int moderate = (m >= SLUT_SQUARABLE_MIN && m <= SLUT_SQUARABLE_MAX) ? 1 : 0;
-    double d_far = (moderate != 0) ? sqrt((s - D) * (s - D) + 4.0 * s * D * sin_half * sin_half)
+    double d_far = (moderate != 0) ? sqrt(SLUT_AIRLIGHT_FAR_DISTANCE2(s, D, sin_half))
                             : m * sqrt(((s - D) / m) * ((s - D) / m) + 4.0 * (s / m) * (D / m) * sin_half * sin_half);
     double x = s - D * cos_gamma, ds = D * sg;
     double y = D - s * cos_gamma, ss = s * sg;
     g.tan_w1 = (x >= 0.0) ? ds / (d_far + x) : (d_far - x) / ds;
     g.a1 = sigma_t * ((x >= 0.0) ? x + d_far : ds * (ds / (d_far - x)));
     g.tan_dv = (y >= 0.0) ? ss / (d_far + y) : (d_far - y) / ss;
-    g.optical_delta = sigma_t * fmax((moderate != 0) ? s + (s * s - 2.0 * s * D * cos_gamma) / (d_far + D)
+    g.optical_delta = sigma_t * fmax((moderate != 0) ? SLUT_AIRLIGHT_DELTA(s, D, cos_gamma, d_far)
                                                : s + s * ((s - 2.0 * D * cos_gamma) / (d_far + D)),
                                       0.0);
     return g;

@@ -124,7 +124,7 @@ void sincos_gamma(const AirlightQuery &q, double *sin_gamma, double *cos_gamma) 
     double sin_half, cos_half;
     slut_sincos_half_angle(half, &sin_half, &cos_half);
     *sin_gamma = 2.0 * sin_half * cos_half;
-    *cos_gamma = (cos_half - sin_half) * (cos_half + sin_half);
+    *cos_gamma = SLUT_AIRLIGHT_COS_GAMMA(sin_half, cos_half);
 }
 } // namespace
 
@@ -436,9 +436,9 @@ SLUT_SIMD4_TARGET inline simd4::v4d abs_of(simd4::v4d x) { return simd4::abs4(x)
 SLUT_SIMD4_TARGET inline simd4::v4d max_of(simd4::v4d x, double y) { return simd4::max4(x, simd4::splat(y)); }
 
 // slut_airlight_setup_near_end_unscaled's geometry from the sine and cosine of γ/2 (moderate
-// lengths: s, D ≤ 1e100), written once for the scalar call's vector path (AirlightScalar4,
-// Real = double) and the batch (AirlightBatch, four queries in a v4d): the same expressions,
-// so the same values.
+// lengths: s, D ≤ 1e100; its formulas from kernels/slut_airlight.h's SLUT_AIRLIGHT_* macros)
+// for the scalar call's vector path (AirlightScalar4, Real = double) and the batch
+// (AirlightBatch, four queries in a v4d): the same expressions, so the same values.
 template <class Real>
 struct NearEnd {
     Real sin_gamma, cos_gamma; // of γ, sin γ ≥ 1e-300 (on the axis: the one-panel rule's length / sin γ stays finite)
@@ -452,10 +452,10 @@ template <class Real>
 SLUT_SIMD4_TARGET inline NearEnd<Real> near_end(Real optical_distance, Real D, Real s, Real sin_half, Real cos_half) {
     NearEnd<Real> g;
     g.sin_gamma = max_of(2.0 * sin_half * cos_half, SLUT_TINY);
-    g.cos_gamma = (cos_half - sin_half) * (cos_half + sin_half);
+    g.cos_gamma = SLUT_AIRLIGHT_COS_GAMMA(sin_half, cos_half);
     g.u = optical_distance * g.sin_gamma;
     g.c = 2.0 * optical_distance * sin_half;
-    g.d_far = sqrt_of((s - D) * (s - D) + 4.0 * s * D * sin_half * sin_half);
+    g.d_far = sqrt_of(SLUT_AIRLIGHT_FAR_DISTANCE2(s, D, sin_half));
     g.x = s - D * g.cos_gamma;
     g.ds = D * g.sin_gamma;
     g.y = D - s * g.cos_gamma;
@@ -464,11 +464,10 @@ SLUT_SIMD4_TARGET inline NearEnd<Real> near_end(Real optical_distance, Real D, R
     g.dy = g.d_far + abs_of(g.y);
     return g;
 }
-// σ_t Δ, Δ = s + d − D ≥ 0 (the far end's extra attenuation e^{−σ_t Δ}, kernels/slut_airlight.h),
-// as s + (s² − 2 s D cos γ)/(d + D): no cancellation.
+// σ_t Δ ≥ 0 (the far end's extra attenuation e^{−σ_t Δ}, SLUT_AIRLIGHT_DELTA).
 template <class Real>
 SLUT_SIMD4_TARGET inline Real optical_delta_of(Real sigma_t, Real D, Real s, const NearEnd<Real> &g) {
-    return sigma_t * max_of(s + (s * s - 2.0 * s * D * g.cos_gamma) / (g.d_far + D), 0.0);
+    return sigma_t * max_of(SLUT_AIRLIGHT_DELTA(s, D, g.cos_gamma, g.d_far), 0.0);
 }
 } // namespace
 
