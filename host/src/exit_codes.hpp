@@ -1,4 +1,4 @@
-// scatterlut — the command line's exit codes (README.md, "Exit codes").
+// scatterlut — the command line's exit codes (docs/EXIT_CODES.md).
 #pragma once
 
 namespace scatterlut {
