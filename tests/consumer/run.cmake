@@ -1,21 +1,30 @@
 # ctest driver: install the build into a fresh prefix, generate a table with the installed
 # binary, then move the prefix elsewhere (an install must not depend on where it was made)
-# and build the outside consumer against the moved prefix twice: with find_package and with
-# pkg-config. Both consumers load the table and compare with exact quadrature.
-# -DBUILD_DIR=… -DSOURCE_DIR=… -DWORK_DIR=… -DCXX=… (the C++ compiler for the pkg-config build)
+# and build the outside consumer against the moved prefix three times: with find_package, with
+# plain `pkg-config --cflags --libs` and with `pkg-config --static --cflags --libs`. Each
+# consumer loads the table and compares with exact quadrature; with OpenEXR it also reads the
+# table's EXR file with load_exr, so flags that leave out OpenEXR fail the link.
+# -DBUILD_DIR=… -DSOURCE_DIR=… -DWORK_DIR=… -DCXX=… (the C++ compiler for the pkg-config builds)
+# -DWITH_OPENEXR=ON|OFF (SCATTERLUT_WITH_OPENEXR of the build)
 file(REMOVE_RECURSE "${WORK_DIR}")
 include("${SOURCE_DIR}/cmake/slut_step.cmake")
 set(installed "${WORK_DIR}/prefix")
 set(moved "${WORK_DIR}/moved/prefix")
 step(${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${installed}")
-step("${installed}/bin/scatterlut" generate --out "${WORK_DIR}/tables" --format bin --n-u 128 --n-w 64)
+set(tables "${WORK_DIR}/tables/airlight_F.slut")
+set(format bin)
+if(WITH_OPENEXR)
+  list(APPEND tables "${WORK_DIR}/tables/airlight_F.exr")
+  set(format both)
+endif()
+step("${installed}/bin/scatterlut" generate --out "${WORK_DIR}/tables" --format ${format} --n-u 128 --n-w 64)
 file(MAKE_DIRECTORY "${WORK_DIR}/moved")
 file(RENAME "${installed}" "${moved}")
 
 # find_package from the moved prefix.
 step(${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/consumer" -B "${WORK_DIR}/build" "-DCMAKE_PREFIX_PATH=${moved}")
 step(${CMAKE_COMMAND} --build "${WORK_DIR}/build")
-step("${WORK_DIR}/build/consumer" "${WORK_DIR}/tables/airlight_F.slut")
+step("${WORK_DIR}/build/consumer" ${tables})
 
 # The GPU snippets, generated at build time, are installed beside the library.
 foreach(snippet scatterlut_airlight.glsl scatterlut_airlight.hlsl scatterlut_nearlight.glsl scatterlut_nearlight.hlsl
@@ -52,17 +61,34 @@ if(NOT pc_count EQUAL 1)
 endif()
 get_filename_component(pc_dir "${pc_files}" DIRECTORY)
 set(ENV{PKG_CONFIG_PATH} "${pc_dir}")
-execute_process(COMMAND ${PKG_CONFIG} --static --cflags --libs scatterlut
-                RESULT_VARIABLE rc OUTPUT_VARIABLE pc_flags ERROR_VARIABLE pc_err OUTPUT_STRIP_TRAILING_WHITESPACE)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "pkg-config does not resolve scatterlut from ${pc_dir}: ${pc_err}")
-endif()
-string(FIND "${pc_flags}" "${installed}/" stale)
-string(FIND "${pc_flags}" "-I${moved}/" fresh)
-if(NOT stale EQUAL -1 OR fresh EQUAL -1)
-  message(FATAL_ERROR "pkg-config flags do not follow the moved prefix ${moved}: ${pc_flags}")
-endif()
-separate_arguments(pc_args UNIX_COMMAND "${pc_flags}")
-step(${CXX} -std=c++17 "${SOURCE_DIR}/tests/consumer/main.cpp" -o "${WORK_DIR}/consumer_pkgconfig" ${pc_args})
-step("${WORK_DIR}/consumer_pkgconfig" "${WORK_DIR}/tables/airlight_F.slut")
-message(STATUS "outside consumers (find_package, pkg-config) built and ran against a moved install")
+foreach(form plain static)
+  set(pc_options --cflags --libs)
+  if(form STREQUAL "static")
+    set(pc_options --static --cflags --libs)
+  endif()
+  string(REPLACE ";" " " pc_shown "${pc_options}")
+  execute_process(COMMAND ${PKG_CONFIG} ${pc_options} scatterlut
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE pc_flags ERROR_VARIABLE pc_err OUTPUT_STRIP_TRAILING_WHITESPACE)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "pkg-config ${pc_shown} does not resolve scatterlut from ${pc_dir}: ${pc_err}")
+  endif()
+  string(FIND "${pc_flags}" "${installed}/" stale)
+  string(FIND "${pc_flags}" "-I${moved}/" fresh_include)
+  string(FIND "${pc_flags}" "-L${moved}/" fresh_lib)
+  if(NOT stale EQUAL -1 OR fresh_include EQUAL -1 OR fresh_lib EQUAL -1)
+    message(FATAL_ERROR "pkg-config ${pc_shown} flags do not follow the moved prefix ${moved}: ${pc_flags}")
+  endif()
+  message(STATUS "pkg-config ${pc_shown} scatterlut: ${pc_flags}")
+  if(form STREQUAL "plain")
+    # Exactly as a user writes it: the shell splits $(pkg-config --cflags --libs scatterlut).
+    step(sh -c "\"$1\" -std=c++17 \"$2\" -o \"$3\" $(\"$4\" --cflags --libs scatterlut)" sh
+         "${CXX}" "${SOURCE_DIR}/tests/consumer/main.cpp" "${WORK_DIR}/consumer_pkgconfig" "${PKG_CONFIG}")
+  else()
+    separate_arguments(pc_args UNIX_COMMAND "${pc_flags}")
+    step(${CXX} -std=c++17 "${SOURCE_DIR}/tests/consumer/main.cpp" -o "${WORK_DIR}/consumer_pkgconfig_${form}"
+         ${pc_args})
+  endif()
+endforeach()
+step("${WORK_DIR}/consumer_pkgconfig" ${tables})
+step("${WORK_DIR}/consumer_pkgconfig_static" ${tables})
+message(STATUS "outside consumers (find_package, pkg-config plain and --static) built and ran against a moved install")
