@@ -90,6 +90,31 @@ std::string tick_label(const Scale &s, double v) {
 
 } // namespace
 
+double text_width_px(const std::string &text, double font_size_px, bool bold) {
+    double em = 0;
+    for (unsigned char c : text) {
+        if ((c & 0xC0) == 0x80) continue; // a UTF-8 continuation byte: the same character
+        const bool wide = c == 'm' || c == 'w' || c == 'M' || c == 'W' || c == '%' || c == '@';
+        em += wide ? kTextWideAdvanceEm : kTextAdvanceEm;
+    }
+    return em * font_size_px * (bold ? kTextBoldFactor : 1.0);
+}
+
+TextBox text_box(const std::string &text, double x, double y, double font_size_px, TextAnchor anchor, bool bold,
+                 bool rotated) {
+    const double w = text_width_px(text, font_size_px, bold);
+    // Along the text (u, from the anchor point) and across it (v, down from the baseline).
+    const double u0 = anchor == TextAnchor::Start ? 0 : anchor == TextAnchor::Middle ? -w / 2 : -w;
+    const double v0 = -kTextAscentEm * font_size_px, v1 = kTextDescentEm * font_size_px;
+    if (!rotated) return {x + u0, y + v0, x + u0 + w, y + v1};
+    // rotate(-90): the text's u axis points up the page, its v axis to the right.
+    return {x + v0, y - (u0 + w), x + v1, y - u0};
+}
+
+bool boxes_overlap(const TextBox &a, const TextBox &b) {
+    return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+
 std::string render_svg(const Plot &plot, int width_px, int height_px) {
     const double left = 78, right = 190, top = 40, bottom = 58; // margins; legend on the right
     Scale sx, sy;
@@ -150,7 +175,7 @@ std::string render_svg(const Plot &plot, int width_px, int height_px) {
         o << "<line x1=\"" << px(sx.p0) << "\" y1=\"" << px(sy.to_px(v)) << "\" x2=\"" << px(sx.p1) << "\" y2=\""
           << px(sy.to_px(v)) << "\"/>\n";
     o << "</g>\n";
-    o << "<rect x=\"" << px(sx.p0) << "\" y=\"" << px(sy.p1) << "\" width=\"" << px(sx.p1 - sx.p0) << "\" height=\""
+    o << "<rect class=\"plot-area\" x=\"" << px(sx.p0) << "\" y=\"" << px(sy.p1) << "\" width=\"" << px(sx.p1 - sx.p0) << "\" height=\""
       << px(sy.p0 - sy.p1) << "\" fill=\"none\" stroke=\"#444444\"/>\n";
     for (double v : xt)
         o << "<text x=\"" << px(sx.to_px(v)) << "\" y=\"" << px(sy.p0 + 16) << "\" text-anchor=\"middle\">"

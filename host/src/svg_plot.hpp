@@ -49,6 +49,37 @@ struct Plot {
     std::vector<PlotVLine> vlines;
 };
 
+// ---- The box a line of chart text covers: one estimate for the label placement in
+// render_svg and for the tests that check the charts for overlaps (tests/host/chart_check.hpp).
+//
+// Width: the sum of each character's advance (one UTF-8 code point is one character):
+// kTextAdvanceEm of the font size, kTextWideAdvanceEm for the wide letters m, w, M, W, %, @;
+// times kTextBoldFactor in bold. These cover DejaVu Sans, the usual "sans-serif" (its digits
+// advance 0.636 em, lower case 0.28–0.64 em but m 0.974 em; bold about 1.09x). Height: from
+// kTextAscentEm above the baseline (DejaVu's digits and capitals reach 0.73 em, ascenders
+// 0.76 em) to kTextDescentEm below it (0.236 em). Pixels, y down, as in the SVG.
+constexpr double kTextAdvanceEm = 0.64;
+constexpr double kTextWideAdvanceEm = 1.0;
+constexpr double kTextBoldFactor = 1.1;
+constexpr double kTextAscentEm = 0.76;
+constexpr double kTextDescentEm = 0.24;
+
+enum class TextAnchor { Start, Middle, End }; // SVG's text-anchor
+
+struct TextBox {
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0; // left, top, right, bottom
+};
+
+double text_width_px(const std::string &text, double font_size_px, bool bold = false);
+
+// The box of `text` drawn at (x, y) (the baseline's anchor point). rotated: the text turned by
+// rotate(-90) about (x, y), reading upwards, as the y axis's title and a vertical line's caption.
+TextBox text_box(const std::string &text, double x, double y, double font_size_px, TextAnchor anchor,
+                 bool bold = false, bool rotated = false);
+
+// Whether the boxes share an area (touching edges do not count).
+bool boxes_overlap(const TextBox &a, const TextBox &b);
+
 // The points of `points` that no other point beats in both coordinates (smaller x and
 // smaller y are better), sorted by x: the Pareto front of a cost–error trade-off.
 std::vector<PlotPoint> pareto_front(std::vector<PlotPoint> points);
