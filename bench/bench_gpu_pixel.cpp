@@ -48,6 +48,7 @@
 
 extern "C" {
 #include "slut_airlight.h"
+#include "slut_airlight_rational.h"
 }
 
 namespace {
@@ -278,13 +279,22 @@ int main(int argc, char **argv) {
     const std::string snippet_call = "slut_airlight_radiance(ln_gs_table, slut_airlight_table(u_max, u_scale, "
                                      "u_count, w_min, w_count), ss, sa, i0, dist, sg, cg, len)";
     const GLuint ln_gs_texture = make_texture(gl, ln_gs, u_count, w_count);
+    // The fast tier's table (kernels/slut_airlight_rational.h), f32.
+    const int rational_count = 64;
+    std::vector<float> hn(static_cast<size_t>(rational_count) * rational_count);
+    for (int j = 0; j < rational_count; ++j)
+        for (int i = 0; i < rational_count; ++i)
+            hn[static_cast<size_t>(j) * rational_count + i] = static_cast<float>(slut_airlight_rational_node(
+                static_cast<double>(i) / (rational_count - 1), static_cast<double>(j) / (rational_count - 1), 1.0));
+    const GLuint hn_texture = make_texture(gl, hn, rational_count, rational_count);
     const GLuint f_texture = make_texture(gl, f_texels, kFCount, kFCount);
 
     std::vector<Method> methods = {
-        {"closed", "closed form × e^{−σ_t D} (Macklin 2010)", 0, 0},
-        {"snippet", "scatterlut_airlight.glsl, texelFetch", 0, ln_gs_texture},
-        {"snippet_hw", "scatterlut_airlight.glsl, SLUT_AIRLIGHT_HARDWARE_FILTER", 0, ln_gs_texture},
+        {"fast", "scatterlut_airlight.glsl, SLUT_TIER_FAST", 0, hn_texture},
+        {"accurate", "scatterlut_airlight.glsl, SLUT_TIER_ACCURATE", 0, hn_texture},
+        {"airlight_F", "scatterlut_airlight.glsl without a tier: the airlight_F table, texelFetch", 0, ln_gs_texture},
         {"sun2005", "Sun et al. 2005, 64² F table, two fetches", 0, f_texture},
+        {"closed", "closed form × e^{−σ_t D} (Macklin 2010)", 0, 0},
         {"inputs", "reads the inputs only", 0, 0},
     };
     if (!opt.compare_snippet.empty()) {
@@ -292,11 +302,16 @@ int main(int argc, char **argv) {
     }
     for (Method &m : methods) {
         std::string fs = "#version 430\n";
-        if (m.name == "snippet_hw") fs += "#define SLUT_AIRLIGHT_HARDWARE_FILTER\n";
+        if (m.name == "fast") fs += "#define SLUT_TIER_FAST\n";
+        if (m.name == "accurate") fs += "#define SLUT_TIER_ACCURATE\n";
         fs += kFragmentHead;
         if (m.name == "closed") fs += closed_glsl + fragment_main("closed_form_attenuated(ss, sa, i0, dist, sg, cg, len)");
         else if (m.name == "sun2005") fs += sun_glsl + fragment_main("sun2005(ss, sa, i0, dist, sg, cg, len)");
         else if (m.name == "inputs") fs += fragment_main("ss + sa + i0 + dist + sg + cg + len");
+        else if (m.name == "fast" || m.name == "accurate")
+            fs += "layout(binding = 0) uniform sampler2D hn_table;\nuniform int m_count, t_count;\n" + snippet +
+                  fragment_main("slut_airlight_radiance(hn_table, slut_airlight_table(m_count, t_count), ss, sa, i0, "
+                                "dist, sg, cg, len)");
         else fs += table_uniforms + (m.name == "compare" ? compare_text : snippet) + fragment_main(snippet_call);
         const std::string error = gpu_harness::build_program_stages(
             gl, {{GL_VERTEX_SHADER, kVertex}, {GL_FRAGMENT_SHADER, fs}}, &m.program);
@@ -319,6 +334,8 @@ int main(int argc, char **argv) {
         set_f("w_min", plan.w_min);
         set_i("u_count", u_count);
         set_i("w_count", w_count);
+        set_i("m_count", rational_count);
+        set_i("t_count", rational_count);
         set_f("f_u_max", kFUMax);
     }
 
@@ -413,7 +430,9 @@ int main(int argc, char **argv) {
     }
     const double exact_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - e0).count();
 
-    const size_t closed = 0;
+    const size_t closed = static_cast<size_t>(
+        std::find_if(methods.begin(), methods.end(), [](const Method &m) { return m.name == "closed"; }) -
+        methods.begin());
     std::printf("%d x %d pixels, %d rounds x %d frames per method; errors on %zu pixels (every %d-th with "
                 "e^{-sigma_t D} >= 1e-6; exact radiance %.1f s); of those %.1f %% take the snippet's one-panel "
                 "path (no fetch), %.1f %% the two-sample path and then the θ-integral (the ends cancel), %.1f %% sample "
@@ -425,14 +444,24 @@ int main(int argc, char **argv) {
                 100.0 * small_w / std::max<size_t>(sampled.size(), 1),
                 100.0 * sun_clamped / std::max<size_t>(sampled.size(), 1), kFUMax);
     std::printf("| method | ms per frame (median [min-max] of rounds) | ns per pixel | net of `inputs`, ns per pixel "
-                "| / closed (median [min-max] of per-round ratios) | median rel. error | p99 | max |\n"
-                "|---|---|---|---|---|---|---|---|\n");
+                "| / closed (median [min-max] of per-round ratios) | / sun2005 (the same) | median rel. error | p99 "
+                "| max |\n|---|---|---|---|---|---|---|---|---|\n");
+    const size_t sun = static_cast<size_t>(
+        std::find_if(methods.begin(), methods.end(), [](const Method &m) { return m.name == "sun2005"; }) -
+        methods.begin());
+    // Per round, method m's median frame over `base`'s: "median [min-max]" of the rounds.
+    auto ratio_text = [&](size_t m, size_t base) {
+        std::vector<double> ratios;
+        for (int r = 0; r < opt.rounds; ++r) ratios.push_back(round_ms[m][r] / round_ms[base][r]);
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.2f [%.2f-%.2f]", median_of(ratios),
+                      *std::min_element(ratios.begin(), ratios.end()), *std::max_element(ratios.begin(), ratios.end()));
+        return std::string(buf);
+    };
     const size_t inputs = nm - 1;
     const double inputs_ms = median_of(round_ms[inputs]);
     std::vector<float> image(pixels);
     for (size_t m = 0; m < nm; ++m) {
-        std::vector<double> ratios;
-        for (int r = 0; r < opt.rounds; ++r) ratios.push_back(round_ms[m][r] / round_ms[closed][r]);
         const double ms = median_of(round_ms[m]);
         const double ns_per_pixel = ms * 1e6 / static_cast<double>(pixels);
         const double net = (ms - inputs_ms) * 1e6 / static_cast<double>(pixels);
@@ -451,11 +480,10 @@ int main(int argc, char **argv) {
             std::snprintf(buf, sizeof buf, "%.2g | %.2g | %.2g", st.median, st.p99, st.max);
             errors = buf;
         }
-        std::printf("| %s (%s) | %.2f [%.2f-%.2f] | %.2f | %.2f | %.2f [%.2f-%.2f] | %s |\n", methods[m].name.c_str(),
+        std::printf("| %s (%s) | %.2f [%.2f-%.2f] | %.2f | %.2f | %s | %s | %s |\n", methods[m].name.c_str(),
                     methods[m].what.c_str(), ms, *std::min_element(round_ms[m].begin(), round_ms[m].end()),
                     *std::max_element(round_ms[m].begin(), round_ms[m].end()), ns_per_pixel, net,
-                    median_of(ratios), *std::min_element(ratios.begin(), ratios.end()),
-                    *std::max_element(ratios.begin(), ratios.end()), errors.c_str());
+                    ratio_text(m, closed).c_str(), ratio_text(m, sun).c_str(), errors.c_str());
     }
     if (gl.glGetError() != GL_NO_ERROR) {
         std::fprintf(stderr, "scatterlut_gpu_bench: OpenGL error during the read-back\n");
