@@ -115,6 +115,287 @@ bool boxes_overlap(const TextBox &a, const TextBox &b) {
     return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
 }
 
+namespace {
+
+// ---------------------------------------------------------------- label placement
+// Data labels go where they cover no other label and no marker, inside the plot area (the
+// boxes: text_box's estimate): of a list of candidate places around their point, a free one
+// nearer its own point than any other if there is one, then crossing the fewest lines, then
+// the earliest. Placement order: the vertical, then the horizontal reference lines' captions,
+// the markers' labels, the values beyond the axes, the points' labels, the footnotes' numbers.
+// A label with no free place goes to the footnotes under the chart.
+
+constexpr double kPointRadius = 3.2;   // a series' point
+constexpr double kRingRadius = 8;      // a marker's ring around its point
+constexpr double kClippedRadius = 6;   // the triangle of a value beyond the axis, as a disc
+constexpr double kLabelGap = 3;        // between a label and its point's marker
+constexpr double kLineRoom = 6;        // from a reference line to the plot's frame
+constexpr double kEdgeRoom = 10;       // from a point to the plot's frame: its ring fits, and a
+                                       // label beside it
+constexpr double kBeyondRoom = 2 * kRingRadius + 8; // the same at an end where values beyond
+                                                   // the axis are drawn (a ring's width, more)
+constexpr double kClearance = 1;       // kept free around labels and markers
+constexpr double kPointLabelSize = 10; // font sizes (px)
+constexpr double kAxisSize = 12;
+constexpr double kTagSize = 9;         // a footnote's number beside its point
+constexpr double kFootnoteSize = 11;
+constexpr double kFootnoteStep = 15;   // between footnote lines
+
+struct Disc {
+    double x = 0, y = 0, r = 0;
+};
+
+struct Label {
+    std::string text;
+    double x = 0, y = 0, size = kAxisSize;
+    TextAnchor anchor = TextAnchor::Start;
+    bool bold = false, rotated = false;
+    std::string colour;
+    bool leader = false;              // a line from the point's marker to the label
+    double lx0 = 0, ly0 = 0, lx1 = 0, ly1 = 0;
+
+    TextBox box() const { return text_box(text, x, y, size, anchor, bold, rotated); }
+};
+
+TextBox grown(const TextBox &b, double d) { return {b.x0 - d, b.y0 - d, b.x1 + d, b.y1 + d}; }
+
+bool box_meets_disc(const TextBox &b, const Disc &c) {
+    const double dx = std::max({b.x0 - c.x, 0.0, c.x - b.x1});
+    const double dy = std::max({b.y0 - c.y, 0.0, c.y - b.y1});
+    return dx * dx + dy * dy < c.r * c.r;
+}
+
+struct Segment {
+    double x0, y0, x1, y1;
+};
+
+// Whether the segment passes through the box (Liang–Barsky clipping).
+bool segment_meets_box(const Segment &s, const TextBox &b) {
+    double t0 = 0, t1 = 1;
+    const double dx = s.x1 - s.x0, dy = s.y1 - s.y0;
+    const double p[4] = {-dx, dx, -dy, dy};
+    const double q[4] = {s.x0 - b.x0, b.x1 - s.x0, s.y0 - b.y0, b.y1 - s.y0};
+    for (int i = 0; i < 4; ++i) {
+        if (p[i] == 0) {
+            if (q[i] < 0) return false;
+            continue;
+        }
+        const double t = q[i] / p[i];
+        if (p[i] < 0) t0 = std::max(t0, t);
+        else t1 = std::min(t1, t);
+        if (t0 > t1) return false;
+    }
+    return true;
+}
+
+struct Placer {
+    TextBox area;              // the plot area
+    std::vector<Disc> markers; // every marker drawn
+    std::vector<Segment> lines; // the series' lines and the reference lines: crossed only if need be
+    std::vector<Label> placed;
+
+    // The radius to keep clear around a point at (x, y): its own marker's, or a larger one
+    // drawn around it (a marker's ring).
+    double clear_radius(double x, double y, double r) const {
+        for (const Disc &m : markers)
+            if (std::hypot(m.x - x, m.y - y) < m.r) r = std::max(r, m.r + std::hypot(m.x - x, m.y - y));
+        return r;
+    }
+    int lines_crossed(const Label &l) const {
+        const TextBox g = grown(l.box(), kClearance);
+        int n = 0;
+        for (const Segment &s : lines) n += segment_meets_box(s, g);
+        return n;
+    }
+    bool free(const Label &l) const {
+        const TextBox b = l.box();
+        if (b.x0 < area.x0 + kClearance || b.x1 > area.x1 - kClearance || b.y0 < area.y0 + kClearance ||
+            b.y1 > area.y1 - kClearance)
+            return false;
+        const TextBox g = grown(b, kClearance);
+        for (const Label &p : placed)
+            if (boxes_overlap(g, p.box()) || (l.leader && segment_meets_box({l.lx0, l.ly0, l.lx1, l.ly1}, p.box())))
+                return false;
+        for (const Disc &m : markers)
+            if (box_meets_disc(g, m)) return false;
+        return true;
+    }
+    // Whether some other marker is nearer the label than its own point at (x, y), so that the
+    // reader would take the label for that one's.
+    bool nearer_to_another(const Label &l, double x, double y) const {
+        if (std::isnan(x)) return false; // a caption: no point of its own
+        const TextBox b = l.box();
+        auto distance = [&b](double px_, double py_) {
+            return std::hypot(std::max({b.x0 - px_, 0.0, px_ - b.x1}), std::max({b.y0 - py_, 0.0, py_ - b.y1}));
+        };
+        const double own = distance(x, y);
+        for (const Disc &m : markers)
+            if (std::hypot(m.x - x, m.y - y) > 0.5 && distance(m.x, m.y) < own - 0.5) return true;
+        return false;
+    }
+    // Places the free candidate for the point at (x, y) that is nearer its own point than any
+    // other if one is, then crosses the fewest lines, then comes first; false if none is free.
+    // A leader line is a line for later labels.
+    bool place(const std::vector<Label> &candidates, double x = NAN, double y = NAN) {
+        const Label *best = nullptr;
+        std::pair<bool, int> best_cost{true, 0};
+        for (const Label &c : candidates) {
+            if (!free(c)) continue;
+            const std::pair<bool, int> cost{nearer_to_another(c, x, y), lines_crossed(c)};
+            if (!best || cost < best_cost) {
+                best = &c;
+                best_cost = cost;
+                if (cost == std::pair<bool, int>{false, 0}) break;
+            }
+        }
+        if (!best) return false;
+        placed.push_back(*best);
+        if (best->leader) lines.push_back({best->lx0, best->ly0, best->lx1, best->ly1});
+        return true;
+    }
+};
+
+// Candidate places for `text` beside a marker of radius r at (x, y), in this order: right,
+// left, above, below, the four diagonals, then the eight directions between those; then all
+// sixteen further out, with a leader line from the marker to the label. Each place puts the
+// label's box at kLabelGap (plus the extra distance) from the marker; a label on the left
+// ends there, one on the right starts there (text-anchor), so a text a little wider or
+// narrower than its estimate grows away from its point.
+std::vector<Label> around(const std::string &text, double x, double y, double r, double size, bool bold,
+                          const std::string &colour, bool above_right_first) {
+    const double asc = kTextAscentEm * size, desc = kTextDescentEm * size;
+    const double w = text_width_px(text, size, bold), h = asc + desc;
+    constexpr double kPi = 3.14159265358979323846;
+    std::vector<double> angles = {0, 180, 90, 270, 315, 45, 225, 135, 337.5, 22.5, 202.5, 157.5, 292.5, 67.5, 247.5, 112.5};
+    if (above_right_first) angles.insert(angles.begin(), 45);
+    std::vector<Label> out;
+    for (double extra : {0.0, 10.0, 20.0, 32.0, 48.0, 72.0}) {
+        for (double deg : angles) {
+            // Direction on the page (y down): 90° is up.
+            const double ux = std::cos(deg * kPi / 180), uy = -std::sin(deg * kPi / 180);
+            const double reach = r + kLabelGap + extra;
+            // The box's centre along the direction, just far enough for the box to keep `reach`
+            // from the point (bisection on the distance, which grows along the ray).
+            auto distance = [&](double t) {
+                const double cx = t * ux, cy = t * uy;
+                return std::hypot(std::max(std::fabs(cx) - w / 2, 0.0), std::max(std::fabs(cy) - h / 2, 0.0));
+            };
+            double lo = 0, hi = reach + w + h;
+            for (int i = 0; i < 40; ++i) (distance((lo + hi) / 2) < reach ? lo : hi) = (lo + hi) / 2;
+            const double cx = x + hi * ux, cy = y + hi * uy;
+            Label l;
+            l.text = text;
+            l.size = size;
+            l.bold = bold;
+            l.colour = colour;
+            l.anchor = ux > 0.3 ? TextAnchor::Start : ux < -0.3 ? TextAnchor::End : TextAnchor::Middle;
+            l.x = l.anchor == TextAnchor::Start ? cx - w / 2 : l.anchor == TextAnchor::End ? cx + w / 2 : cx;
+            l.y = cy + (asc - desc) / 2;
+            if (extra > 0) {
+                // From the marker's edge to the box's nearest point.
+                const TextBox b = l.box();
+                const double nx = std::clamp(x, b.x0, b.x1), ny = std::clamp(y, b.y0, b.y1);
+                const double len = std::hypot(nx - x, ny - y);
+                l.leader = true;
+                l.lx0 = x + (nx - x) * r / len;
+                l.ly0 = y + (ny - y) * r / len;
+                l.lx1 = nx - (nx - x) * 1.0 / len;
+                l.ly1 = ny - (ny - y) * 1.0 / len;
+            }
+            out.push_back(l);
+        }
+    }
+    return out;
+}
+
+// A series' point, or a marker's, in pixels; `clipped_x`/`clipped_y` (−1 or +1): the value
+// lies beyond that end of the axis (≤ 0 or −∞ on a log axis, ±∞), drawn at the plot's edge.
+struct Spot {
+    bool drawn = false; // false: NaN, nothing to draw
+    double x = 0, y = 0;
+    int clipped_x = 0, clipped_y = 0;
+    bool clipped() const { return clipped_x != 0 || clipped_y != 0; }
+};
+
+// A clipped value sits `radius` + 1 pixels inside the edge it points at.
+Spot locate(const Scale &sx, const Scale &sy, const PlotPoint &p, double radius) {
+    Spot s;
+    if (std::isnan(p.x) || std::isnan(p.y)) return s;
+    auto side = [](const Scale &sc, double v) { return sc.shows(v) ? 0 : v > 0 ? 1 : -1; };
+    s.clipped_x = side(sx, p.x);
+    s.clipped_y = side(sy, p.y);
+    const double x_lo = std::min(sx.p0, sx.p1), x_hi = std::max(sx.p0, sx.p1);
+    const double y_lo = std::min(sy.p0, sy.p1), y_hi = std::max(sy.p0, sy.p1);
+    const double in = radius + 1;
+    // Pixels of an axis's low end (−1) or high end (+1).
+    s.x = s.clipped_x == 0 ? sx.to_px(p.x) : s.clipped_x < 0 ? sx.p0 + (sx.p1 > sx.p0 ? in : -in)
+                                                              : sx.p1 - (sx.p1 > sx.p0 ? in : -in);
+    s.y = s.clipped_y == 0 ? sy.to_px(p.y) : s.clipped_y < 0 ? sy.p0 + (sy.p1 > sy.p0 ? in : -in)
+                                                              : sy.p1 - (sy.p1 > sy.p0 ? in : -in);
+    if (s.clipped()) { // keep the triangle inside the plot along the edge too
+        s.x = std::clamp(s.x, x_lo + in, x_hi - in);
+        s.y = std::clamp(s.y, y_lo + in, y_hi - in);
+    }
+    s.drawn = true;
+    return s;
+}
+
+// The triangle of a clipped value, pointing out of the plot (up, down, left or right).
+std::string clipped_triangle(const Spot &s, const Scale &sx, const Scale &sy, const char *colour) {
+    const double r = kClippedRadius;
+    double ux = 0, uy = 0; // outward, in pixels
+    if (s.clipped_y != 0) uy = (s.clipped_y > 0) == (sy.p1 > sy.p0) ? 1 : -1;
+    else ux = (s.clipped_x > 0) == (sx.p1 > sx.p0) ? 1 : -1;
+    const double tx = s.x + ux * r, ty = s.y + uy * r;              // the tip
+    const double bx = s.x - ux * r * 0.5, by = s.y - uy * r * 0.5;  // the base's middle
+    const double hx = -uy * r * 0.8, hy = ux * r * 0.8;             // half the base
+    return "<polygon class=\"clipped\" points=\"" + px(tx) + "," + px(ty) + " " + px(bx + hx) + "," + px(by + hy) + " " +
+           px(bx - hx) + "," + px(by - hy) + "\" fill=\"" + colour + "\"/>\n";
+}
+
+// Room to keep between a value and the ends of its axis, in pixels.
+struct Room {
+    double v, lo, hi;
+};
+
+// Moves the ends of `s` out until every value is at least its room inside them, so that no
+// marker crosses the plot's frame.
+void pad_for_markers(Scale *s, const std::vector<Room> &items) {
+    const double length = std::fabs(s->p1 - s->p0);
+    double a = s->t(s->lo), b = s->t(s->hi);
+    for (int round = 0; round < 20; ++round) {
+        bool moved = false;
+        for (const Room &r : items) {
+            if (!s->shows(r.v)) continue;
+            const double t = s->t(r.v), per_px = (b - a) / length;
+            if (t - a < r.lo * per_px - 1e-12 * (b - a)) {
+                a = t - r.lo * per_px;
+                moved = true;
+            }
+            if (b - t < r.hi * per_px - 1e-12 * (b - a)) {
+                b = t + r.hi * per_px;
+                moved = true;
+            }
+        }
+        if (!moved) break;
+    }
+    s->lo = s->log ? std::pow(10.0, a) : a;
+    s->hi = s->log ? std::pow(10.0, b) : b;
+}
+
+std::string text_element(const Label &l) {
+    std::string anchor = l.anchor == TextAnchor::Middle ? " text-anchor=\"middle\""
+                         : l.anchor == TextAnchor::End  ? " text-anchor=\"end\""
+                                                        : "";
+    std::string where = l.rotated ? " transform=\"translate(" + px(l.x) + " " + px(l.y) + ") rotate(-90)\""
+                                  : " x=\"" + px(l.x) + "\" y=\"" + px(l.y) + "\"";
+    return "<text class=\"label\"" + where + anchor + (l.size != kAxisSize ? " font-size=\"" + fmt("%g", l.size) + "\"" : "") +
+           (l.bold ? " font-weight=\"bold\"" : "") + (l.colour.empty() ? "" : " fill=\"" + l.colour + "\"") + ">" +
+           escape_xml(l.text) + "</text>\n";
+}
+
+} // namespace
+
 std::string render_svg(const Plot &plot, int width_px, int height_px) {
     const double left = 78, right = 190, top = 40, bottom = 58; // margins; legend on the right
     Scale sx, sy;
@@ -149,22 +430,56 @@ std::string render_svg(const Plot &plot, int width_px, int height_px) {
             y_hi = std::max(y_hi, h.y);
         }
 
-    std::ostringstream o;
-    o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width_px << "\" height=\"" << height_px
-      << "\" viewBox=\"0 0 " << width_px << " " << height_px << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+    std::ostringstream head, o; // head: the <svg> element, whose height the footnotes set
     o << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
     o << "<text x=\"" << px(width_px / 2.0) << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">"
       << escape_xml(plot.title) << "</text>\n";
+    auto svg_head = [&](double height) {
+        head << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width_px << "\" height=\"" << height
+             << "\" viewBox=\"0 0 " << width_px << " " << height
+             << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+        return head.str();
+    };
     if (empty) {
         o << "<text x=\"" << px(width_px / 2.0) << "\" y=\"" << px(height_px / 2.0)
           << "\" text-anchor=\"middle\">no data to show</text>\n</svg>\n";
-        return o.str();
+        return svg_head(height_px) + o.str();
     }
     sx.lo = x_lo;
     sx.hi = x_hi;
     sy.lo = y_lo;
     sy.hi = y_hi;
     const std::vector<double> xt = fit_and_tick(&sx), yt = fit_and_tick(&sy);
+    {
+        // Room inside the frame for every marker, and a reference line apart from the frame:
+        // the axes reach a little past their ticks where a point would otherwise sit on the
+        // frame; more at an end where values beyond the axis are drawn, so that their
+        // triangles keep clear of the points.
+        bool beyond_x[2] = {false, false}, beyond_y[2] = {false, false}; // low end, high end
+        auto note_beyond = [&](const PlotPoint &p) {
+            if (std::isnan(p.x) || std::isnan(p.y)) return;
+            if (!sx.shows(p.x)) beyond_x[p.x > 0] = true;
+            if (!sy.shows(p.y)) beyond_y[p.y > 0] = true;
+        };
+        for (const auto &s : plot.series)
+            for (const auto &p : s.points) note_beyond(p);
+        for (const auto &m : plot.markers) note_beyond(m.at);
+        const Room point_x{0, beyond_x[0] ? kBeyondRoom : kEdgeRoom, beyond_x[1] ? kBeyondRoom : kEdgeRoom};
+        const Room point_y{0, beyond_y[0] ? kBeyondRoom : kEdgeRoom, beyond_y[1] ? kBeyondRoom : kEdgeRoom};
+        std::vector<Room> xs, ys;
+        for (const auto &v : plot.vlines) xs.push_back({v.x, kLineRoom, kLineRoom});
+        for (const auto &h : plot.hlines) ys.push_back({h.y, kLineRoom, kLineRoom});
+        auto add_point = [&](const PlotPoint &p) {
+            if (!sx.shows(p.x) || !sy.shows(p.y)) return;
+            xs.push_back({p.x, point_x.lo, point_x.hi});
+            ys.push_back({p.y, point_y.lo, point_y.hi});
+        };
+        for (const auto &s : plot.series)
+            for (const auto &p : s.points) add_point(p);
+        for (const auto &m : plot.markers) add_point(m.at);
+        pad_for_markers(&sx, xs);
+        pad_for_markers(&sy, ys);
+    }
 
     // Grid, ticks and labels.
     o << "<g stroke=\"#dddddd\" stroke-width=\"1\">\n";
@@ -175,10 +490,10 @@ std::string render_svg(const Plot &plot, int width_px, int height_px) {
         o << "<line x1=\"" << px(sx.p0) << "\" y1=\"" << px(sy.to_px(v)) << "\" x2=\"" << px(sx.p1) << "\" y2=\""
           << px(sy.to_px(v)) << "\"/>\n";
     o << "</g>\n";
-    o << "<rect class=\"plot-area\" x=\"" << px(sx.p0) << "\" y=\"" << px(sy.p1) << "\" width=\"" << px(sx.p1 - sx.p0) << "\" height=\""
-      << px(sy.p0 - sy.p1) << "\" fill=\"none\" stroke=\"#444444\"/>\n";
+    o << "<rect class=\"plot-area\" x=\"" << px(sx.p0) << "\" y=\"" << px(sy.p1) << "\" width=\"" << px(sx.p1 - sx.p0)
+      << "\" height=\"" << px(sy.p0 - sy.p1) << "\" fill=\"none\" stroke=\"#444444\"/>\n";
     for (double v : xt)
-        o << "<text x=\"" << px(sx.to_px(v)) << "\" y=\"" << px(sy.p0 + 16) << "\" text-anchor=\"middle\">"
+        o << "<text x=\"" << px(sx.to_px(v)) << "\" y=\"" << px(sy.p0 + 18) << "\" text-anchor=\"middle\">"
           << escape_xml(tick_label(sx, v)) << "</text>\n";
     for (double v : yt)
         o << "<text x=\"" << px(sx.p0 - 6) << "\" y=\"" << px(sy.to_px(v) + 4) << "\" text-anchor=\"end\">"
@@ -188,58 +503,188 @@ std::string render_svg(const Plot &plot, int width_px, int height_px) {
     o << "<text transform=\"translate(18 " << px((sy.p0 + sy.p1) / 2) << ") rotate(-90)\" text-anchor=\"middle\">"
       << escape_xml(plot.y_label) << "</text>\n";
 
-    // Reference lines, then the series, then the markers on top.
-    for (const auto &h : plot.hlines) {
-        if (!sy.shows(h.y)) continue;
-        const double y = sy.to_px(h.y);
-        o << "<line x1=\"" << px(sx.p0) << "\" y1=\"" << px(y) << "\" x2=\"" << px(sx.p1) << "\" y2=\"" << px(y)
-          << "\" stroke=\"#888888\" stroke-dasharray=\"6 4\"/>\n";
-        o << "<text x=\"" << px(sx.p1 - 4) << "\" y=\"" << px(y - 4) << "\" text-anchor=\"end\" fill=\"#555555\">"
-          << escape_xml(h.label) << "</text>\n";
+    // Every marker first (the labels keep clear of them), then the labels in order.
+    Placer placer;
+    placer.area = {sx.p0, sy.p1, sx.p1, sy.p0};
+    std::vector<std::vector<Spot>> spots(plot.series.size());
+    for (size_t k = 0; k < plot.series.size(); ++k)
+        for (const auto &p : plot.series[k].points) {
+            spots[k].push_back(locate(sx, sy, p, kClippedRadius));
+            const Spot &s = spots[k].back();
+            if (s.drawn) placer.markers.push_back({s.x, s.y, s.clipped() ? kClippedRadius : kPointRadius});
+        }
+    for (size_t k = 0; k < plot.series.size(); ++k) {
+        if (!plot.series[k].line) continue;
+        const Spot *prev = nullptr;
+        for (const Spot &sp : spots[k]) {
+            if (!sp.drawn || sp.clipped()) continue;
+            if (prev) placer.lines.push_back({prev->x, prev->y, sp.x, sp.y});
+            prev = &sp;
+        }
     }
+    for (const auto &h : plot.hlines)
+        if (sy.shows(h.y)) placer.lines.push_back({sx.p0, sy.to_px(h.y), sx.p1, sy.to_px(h.y)});
+    for (const auto &v : plot.vlines)
+        if (sx.shows(v.x)) placer.lines.push_back({sx.to_px(v.x), sy.p0, sx.to_px(v.x), sy.p1});
+    std::vector<Spot> ring_spots;
+    for (const auto &m : plot.markers) {
+        ring_spots.push_back(locate(sx, sy, m.at, kRingRadius));
+        if (ring_spots.back().drawn) placer.markers.push_back({ring_spots.back().x, ring_spots.back().y, kRingRadius});
+    }
+    struct Footnote {
+        std::string text, colour;
+        const Spot *at; // the point it belongs to, or null
+        double radius;
+    };
+    std::vector<Footnote> footnotes;
+    auto coords = [](const PlotPoint &p) { return "(" + fmt("%.3g", p.x) + ", " + fmt("%.3g", p.y) + ")"; };
+    // A label with no free place: a footnote; its number goes beside the point where that fits,
+    // once every label has its place.
+    auto footnote = [&](const std::string &text, const std::string &colour, const Spot *at, double r) {
+        footnotes.push_back({"[" + std::to_string(footnotes.size() + 1) + "] " + text, colour, at, r});
+    };
+
+    const std::string caption_colour = "#555555";
+    std::vector<double> hline_px, vline_px;
     for (const auto &v : plot.vlines) {
         if (!sx.shows(v.x)) continue;
         const double x = sx.to_px(v.x);
-        o << "<line x1=\"" << px(x) << "\" y1=\"" << px(sy.p1) << "\" x2=\"" << px(x) << "\" y2=\"" << px(sy.p0)
-          << "\" stroke=\"#888888\" stroke-dasharray=\"6 4\"/>\n";
-        o << "<text transform=\"translate(" << px(x - 4) << " " << px(sy.p1 + 6) << ") rotate(-90)\" text-anchor=\"end\" "
-          << "fill=\"#555555\">" << escape_xml(v.label) << "</text>\n";
+        vline_px.push_back(x);
+        const double asc = kTextAscentEm * kAxisSize, desc = kTextDescentEm * kAxisSize;
+        std::vector<Label> c;
+        for (const auto &[anchor, y] : {std::pair{TextAnchor::End, sy.p1 + 4}, std::pair{TextAnchor::Start, sy.p0 - 4}})
+            for (double base : {x - 3 - desc, x + 3 + asc}) {
+                Label l;
+                l.text = v.label;
+                l.x = base;
+                l.y = y;
+                l.anchor = anchor;
+                l.rotated = true;
+                l.colour = caption_colour;
+                c.push_back(l);
+            }
+        if (!placer.place(c)) footnote("the dashed line at " + fmt("%.3g", v.x) + ": " + v.label, caption_colour, nullptr, 0);
+    }
+    for (const auto &h : plot.hlines) {
+        if (!sy.shows(h.y)) continue;
+        const double y = sy.to_px(h.y);
+        hline_px.push_back(y);
+        const double asc = kTextAscentEm * kAxisSize, desc = kTextDescentEm * kAxisSize;
+        std::vector<Label> c;
+        for (const auto &[anchor, x] : {std::pair{TextAnchor::End, sx.p1 - 4}, std::pair{TextAnchor::Start, sx.p0 + 4},
+                                       std::pair{TextAnchor::Middle, (sx.p0 + sx.p1) / 2}})
+            for (double base : {y - 3 - desc, y + 3 + asc}) {
+                Label l;
+                l.text = h.label;
+                l.x = x;
+                l.y = base;
+                l.anchor = anchor;
+                l.colour = caption_colour;
+                c.push_back(l);
+            }
+        if (!placer.place(c)) footnote("the dashed line at " + fmt("%.3g", h.y) + ": " + h.label, caption_colour, nullptr, 0);
+    }
+    for (size_t i = 0; i < plot.markers.size(); ++i) {
+        const Spot &s = ring_spots[i];
+        if (!s.drawn || plot.markers[i].label.empty()) continue;
+        if (!placer.place(around(plot.markers[i].label, s.x, s.y, placer.clear_radius(s.x, s.y, kRingRadius), kAxisSize, true, "", true), s.x, s.y))
+            footnote(plot.markers[i].label + " at " + coords(plot.markers[i].at), "#000000", &s, kRingRadius);
+    }
+    // Values beyond the axes: the value in words beside the triangle.
+    for (size_t k = 0; k < plot.series.size(); ++k) {
+        const PlotSeries &s = plot.series[k];
+        const char *colour = kPalette[k % kPaletteSize];
+        for (size_t i = 0; i < s.points.size(); ++i) {
+            const Spot &sp = spots[k][i];
+            if (!sp.drawn || !sp.clipped()) continue;
+            const std::string name = i < s.point_labels.size() ? s.point_labels[i] : "";
+            const std::string value = sp.clipped_x == 0 ? fmt("%.3g", s.points[i].y) : coords(s.points[i]);
+            const std::string text = name.empty() ? value : name + (sp.clipped_x == 0 ? " = " : " ") + value;
+            if (!placer.place(around(text, sp.x, sp.y, placer.clear_radius(sp.x, sp.y, kClippedRadius), kPointLabelSize, false, colour, false), sp.x, sp.y))
+                footnote(s.label + ", beyond the axis: " + text, colour, &sp, kClippedRadius);
+        }
     }
     for (size_t k = 0; k < plot.series.size(); ++k) {
         const PlotSeries &s = plot.series[k];
         const char *colour = kPalette[k % kPaletteSize];
+        std::vector<bool> done(s.points.size(), false);
+        for (size_t i = 0; i < s.points.size() && i < s.point_labels.size(); ++i) {
+            const Spot &sp = spots[k][i];
+            if (done[i] || !sp.drawn || sp.clipped() || s.point_labels[i].empty()) continue;
+            // The labels of this series' points drawn on this one (within a pixel), as one.
+            std::string text = s.point_labels[i];
+            for (size_t j = i + 1; j < s.points.size() && j < s.point_labels.size(); ++j) {
+                const Spot &other = spots[k][j];
+                if (!done[j] && other.drawn && !other.clipped() && !s.point_labels[j].empty() &&
+                    std::hypot(other.x - sp.x, other.y - sp.y) < 1) {
+                    text += ", " + s.point_labels[j];
+                    done[j] = true;
+                }
+            }
+            if (!placer.place(around(text, sp.x, sp.y, placer.clear_radius(sp.x, sp.y, kPointRadius), kPointLabelSize,
+                                     false, colour, false),
+                              sp.x, sp.y))
+                footnote(s.label + " at " + coords(s.points[i]) + ": " + text, colour, &sp, kPointRadius);
+        }
+    }
+
+    for (size_t i = 0; i < footnotes.size(); ++i)
+        if (const Spot *at = footnotes[i].at)
+            placer.place(around("[" + std::to_string(i + 1) + "]", at->x, at->y,
+                                placer.clear_radius(at->x, at->y, footnotes[i].radius), kTagSize, false,
+                                footnotes[i].colour, false),
+                         at->x, at->y);
+
+    // Reference lines, then the series, then the markers, then the labels on top.
+    for (double y : hline_px)
+        o << "<line x1=\"" << px(sx.p0) << "\" y1=\"" << px(y) << "\" x2=\"" << px(sx.p1) << "\" y2=\"" << px(y)
+          << "\" stroke=\"#888888\" stroke-dasharray=\"6 4\"/>\n";
+    for (double x : vline_px)
+        o << "<line x1=\"" << px(x) << "\" y1=\"" << px(sy.p1) << "\" x2=\"" << px(x) << "\" y2=\"" << px(sy.p0)
+          << "\" stroke=\"#888888\" stroke-dasharray=\"6 4\"/>\n";
+    for (size_t k = 0; k < plot.series.size(); ++k) {
+        const PlotSeries &s = plot.series[k];
+        const char *colour = kPalette[k % kPaletteSize];
         std::string path;
-        for (const auto &p : s.points) {
-            if (!sx.shows(p.x) || !sy.shows(p.y)) continue;
-            path += (path.empty() ? "M" : " L") + px(sx.to_px(p.x)) + " " + px(sy.to_px(p.y));
+        for (const Spot &sp : spots[k]) {
+            if (!sp.drawn || sp.clipped()) continue;
+            path += (path.empty() ? "M" : " L") + px(sp.x) + " " + px(sp.y);
         }
         if (s.line && !path.empty())
             o << "<path d=\"" << path << "\" fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.8\""
               << (s.dashed ? " stroke-dasharray=\"3 3\"" : "") << "/>\n";
-        for (size_t i = 0; i < s.points.size(); ++i) {
-            const PlotPoint &p = s.points[i];
-            if (!sx.shows(p.x) || !sy.shows(p.y)) continue;
-            o << "<circle cx=\"" << px(sx.to_px(p.x)) << "\" cy=\"" << px(sy.to_px(p.y)) << "\" r=\"3.2\" fill=\""
-              << colour << "\"/>\n";
-            if (i < s.point_labels.size() && !s.point_labels[i].empty())
-                o << "<text x=\"" << px(sx.to_px(p.x) + 5) << "\" y=\"" << px(sy.to_px(p.y) + 12) << "\" font-size=\"10\" "
-                  << "fill=\"" << colour << "\">" << escape_xml(s.point_labels[i]) << "</text>\n";
+        for (const Spot &sp : spots[k]) {
+            if (!sp.drawn) continue;
+            if (sp.clipped()) o << clipped_triangle(sp, sx, sy, colour);
+            else
+                o << "<circle cx=\"" << px(sp.x) << "\" cy=\"" << px(sp.y) << "\" r=\"" << fmt("%g", kPointRadius)
+                  << "\" fill=\"" << colour << "\"/>\n";
         }
         const double ly = top + 14 + 18.0 * static_cast<double>(k);
         o << "<line x1=\"" << px(sx.p1 + 14) << "\" y1=\"" << px(ly - 4) << "\" x2=\"" << px(sx.p1 + 34) << "\" y2=\""
           << px(ly - 4) << "\" stroke=\"" << colour << "\" stroke-width=\"2.5\"/>\n";
         o << "<text x=\"" << px(sx.p1 + 40) << "\" y=\"" << px(ly) << "\">" << escape_xml(s.label) << "</text>\n";
     }
-    for (const auto &m : plot.markers) {
-        if (!sx.shows(m.at.x) || !sy.shows(m.at.y)) continue;
-        const double x = sx.to_px(m.at.x), y = sy.to_px(m.at.y);
-        o << "<circle cx=\"" << px(x) << "\" cy=\"" << px(y) << "\" r=\"8\" fill=\"none\" stroke=\"#000000\" "
-          << "stroke-width=\"2\"/>\n";
-        o << "<text x=\"" << px(x + 11) << "\" y=\"" << px(y - 9) << "\" font-weight=\"bold\">" << escape_xml(m.label)
-          << "</text>\n";
+    for (const Spot &s : ring_spots)
+        if (s.drawn)
+            o << "<circle cx=\"" << px(s.x) << "\" cy=\"" << px(s.y) << "\" r=\"" << fmt("%g", kRingRadius)
+              << "\" fill=\"none\" stroke=\"#000000\" stroke-width=\"2\"/>\n";
+    for (const Label &l : placer.placed) {
+        if (l.leader)
+            o << "<line class=\"leader\" x1=\"" << px(l.lx0) << "\" y1=\"" << px(l.ly0) << "\" x2=\"" << px(l.lx1)
+              << "\" y2=\"" << px(l.ly1) << "\" stroke=\"" << (l.colour.empty() ? "#000000" : l.colour)
+              << "\" stroke-width=\"0.8\"/>\n";
+        o << text_element(l);
     }
+    // The footnotes: under the x axis's title, the picture grown to hold them.
+    const double first = height_px + 4.0;
+    for (size_t i = 0; i < footnotes.size(); ++i)
+        o << "<text class=\"footnote\" x=\"12\" y=\"" << px(first + kFootnoteStep * static_cast<double>(i))
+          << "\" font-size=\"" << fmt("%g", kFootnoteSize) << "\" fill=\"" << footnotes[i].colour << "\">"
+          << escape_xml(footnotes[i].text) << "</text>\n";
     o << "</svg>\n";
-    return o.str();
+    const double height = footnotes.empty() ? height_px : first + kFootnoteStep * static_cast<double>(footnotes.size() - 1) + 6;
+    return svg_head(height) + o.str();
 }
 
 std::vector<PlotPoint> pareto_front(std::vector<PlotPoint> points) {

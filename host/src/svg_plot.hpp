@@ -1,7 +1,7 @@
 // scatterlut generator — small, dependency-free SVG charts for the `report` command:
 // x–y series on linear or logarithmic axes, with a legend and labelled markers (the
-// planner's choice, a target line). Output is deterministic text (fixed number format),
-// so the same measurements give the same file.
+// planner's choice, a target line), the labels placed clear of each other. Output is
+// deterministic text (fixed number format), so the same measurements give the same file.
 #pragma once
 
 #include <string>
@@ -84,8 +84,18 @@ bool boxes_overlap(const TextBox &a, const TextBox &b);
 // smaller y are better), sorted by x: the Pareto front of a cost–error trade-off.
 std::vector<PlotPoint> pareto_front(std::vector<PlotPoint> points);
 
-// The chart as a standalone SVG document. Points that cannot be shown (non-finite, or
-// ≤ 0 on a log axis) are left out; a plot with no showable point says so in its body.
+// The chart as a standalone SVG document. The axes fit the points and reference lines, with
+// room for every marker inside the plot area (<rect class="plot-area">). A value beyond an
+// axis (≤ 0 or −∞ on a log axis, ±∞) is a triangle at the plot's edge pointing out, with the
+// value written beside it; a NaN is left out. Labels (the points', the markers', the values
+// beyond the axes, the reference lines' captions) are placed where they cover no other
+// label and no marker, inside the plot area (text_box's estimate): of a list of places around
+// their point (right, left, above, below, between those, then further out with a leader
+// line), a free one nearer its own point than any other if there is one, then crossing the
+// fewest lines, then the earliest. A label with no free place is a numbered footnote under
+// the chart (which grows to hold it), its number beside the point where that fits. Labels of
+// one series' points that fall on one pixel are one label ("median, p99, max"). A plot with
+// no showable point says so in its body.
 std::string render_svg(const Plot &plot, int width_px = 760, int height_px = 460);
 
 } // namespace scatterlut
