@@ -225,9 +225,13 @@ float test_eval(int i) {
 }
 )slsl";
 
+// defines: "" (no tier), a tier's "#define SLUT_TIER_FAST\n" / "#define SLUT_TIER_ACCURATE\n", or the
+// hardware-filter option.
+std::string glsl_compute_source(const std::string &defines) {
+    return nearlight_gpu_test::glsl_compute_source(glsl_snippet(), kTestBody, defines);
+}
 std::string glsl_compute_source(bool hardware_filter) {
-    return nearlight_gpu_test::glsl_compute_source(glsl_snippet(), kTestBody,
-                                                   hardware_filter ? "#define SLUT_NEARLIGHT_HARDWARE_FILTER\n" : "");
+    return glsl_compute_source(std::string(hardware_filter ? "#define SLUT_NEARLIGHT_HARDWARE_FILTER\n" : ""));
 }
 
 std::string hlsl_compute_source(bool hardware_filter) {
@@ -462,13 +466,17 @@ TEST_F(NearLightGpu, TexturesFitTheThreeDimensionalTextureLimit) {
 #endif
 }
 
+// Without a tier and in the accurate tier (SLUT_TIER_ACCURATE: the same texel fetches).
 TEST_F(NearLightGpu, GlslMatchesTheCppSampler) {
 #if SLUT_HAVE_EGL
-    for (bool thick : {true, false}) {
-        std::string error;
-        const std::vector<float> got = run_on_gpu(glsl_compute_source(false), thick, &error);
-        ASSERT_EQ(error, "");
-        expect_agreement(got, thick, "glsl", 0.0, this);
+    for (const std::string tier : {"", "SLUT_TIER_ACCURATE"}) {
+        for (bool thick : {true, false}) {
+            std::string error;
+            const std::vector<float> got =
+                run_on_gpu(glsl_compute_source(tier.empty() ? "" : "#define " + tier + "\n"), thick, &error);
+            ASSERT_EQ(error, "");
+            expect_agreement(got, thick, tier.empty() ? "glsl" : "glsl_accurate", 0.0, this);
+        }
     }
 #endif
 }
@@ -480,10 +488,13 @@ TEST_F(NearLightGpu, GlslHardwareFilterAgreesToTheFilterPrecision) {
     for (bool thick : {true, false}) {
         const double extra = hardware_filter_extra(thick ? tables().e3 : tables().e4, weight_error);
         std::printf("[ filter ] weight error %.3g: extra tolerance %.3g\n", weight_error, extra);
-        std::string error;
-        const std::vector<float> got = run_on_gpu(glsl_compute_source(true), thick, &error);
-        ASSERT_EQ(error, "");
-        expect_agreement(got, thick, "glsl_hw", extra, this);
+        // The option and the fast tier (SLUT_TIER_FAST: the hardware filter).
+        for (const std::string defines : {"#define SLUT_NEARLIGHT_HARDWARE_FILTER\n", "#define SLUT_TIER_FAST\n"}) {
+            std::string error;
+            const std::vector<float> got = run_on_gpu(glsl_compute_source(defines), thick, &error);
+            ASSERT_EQ(error, "");
+            expect_agreement(got, thick, defines.find("FAST") != std::string::npos ? "glsl_fast" : "glsl_hw", extra, this);
+        }
     }
 #endif
 }

@@ -303,10 +303,11 @@ float test_eval(int i) {
 
 // The compute shaders around the snippet (gpu_harness's wrappers): the uniform block holds per
 // table its two axes (min, max, scale, -) and (warp, count, -, -) and (exponent, row0, -, -).
-std::string glsl_compute_source() {
+// defines: "" (no tier, as SLUT_TIER_ACCURATE) or "#define SLUT_TIER_FAST\n" (one filtered fetch).
+std::string glsl_compute_source(const std::string &defines = "") {
     return gpu_harness::glsl_compute_source(glsl_snippet(),
                                             "    vec4 axis_f[4]; ivec4 axis_i[4]; ivec4 table_i[2]; int n_queries;",
-                                            kTestBody, "", false);
+                                            kTestBody, defines, false);
 }
 
 std::string hlsl_compute_source() {
@@ -370,7 +371,10 @@ float4 main(float3 world_pos : TEXCOORD0, float3 normal : NORMAL) : SV_Target {
 //    and e^{−σ_t D_v} to σ_t (D + D_v)·1e-7; the lobe's G_n moves by n·δθ near θ_r = 0).
 constexpr double kTolG = 2e-5, kTolRadiance = 5e-5, kTolPerConditioning = 2e-7;
 
-void expect_agreement(const std::vector<float> &got, const std::string &run, ::testing::Test *test) {
+// extra: added to every tolerance (the fast tier's filter weights: weight error times the
+// largest jump of the stored ln ratio across a cell, which moves G and every term relatively).
+void expect_agreement(const std::vector<float> &got, const std::string &run, ::testing::Test *test,
+                      double extra = 0.0) {
     const Run &r = queries();
     ASSERT_EQ(got.size(), r.queries.size());
     for (const std::string label : {"G", "G_beyond", "total", "diff_direct", "diff_scatt", "spec_direct", "spec_scatt",
@@ -380,8 +384,8 @@ void expect_agreement(const std::vector<float> &got, const std::string &run, ::t
             if (r.queries[i].label == label) idx.push_back(i);
         if (idx.empty()) continue;
         const auto tolerance = [&](size_t i) {
-            if (label == "G" || label == "G_beyond") return kTolG;
-            return kTolRadiance + kTolPerConditioning * r.queries[i].conditioning;
+            if (label == "G" || label == "G_beyond") return kTolG + extra;
+            return kTolRadiance + kTolPerConditioning * r.queries[i].conditioning + extra;
         };
         const Stats st = error_stats(got, r.reference, idx, tolerance);
         std::printf("[ %s ] %-11s n=%zu  max %.3g  p99 %.3g  median %.3g  (worst: gpu %.9g, C++ %.9g)  "
@@ -502,6 +506,35 @@ TEST_F(SurfaceGpu, GlslMatchesTheCppFrontEnd) {
     const std::vector<float> got = run_on_gpu(glsl_compute_source(), &error);
     ASSERT_EQ(error, "");
     expect_agreement(got, "glsl", this);
+#endif
+}
+
+// The fast tier (SLUT_TIER_FAST): one hardware-filtered fetch per table, so the filter's
+// weights (llvmpipe: float; many GPUs: 8 bits) add their error times the largest jump of the
+// stored ln ratio across a cell of the two stacked tables (rows of one table, never across
+// the seam: the theta position is clamped to the table's rows).
+TEST_F(SurfaceGpu, GlslFastTierAgreesToTheFilterPrecision) {
+#if SLUT_HAVE_EGL
+    const double weight_error = hardware_filter_weight_error();
+    ASSERT_GE(weight_error, 0.0) << "the ramp shader failed";
+    double jump = 0;
+    for (const GpuTable *t : {&tables().diffuse, &tables().specular}) {
+        const int nT = t->rounded.axes[0].map.count, nth = t->rounded.axes[1].map.count;
+        for (int j = 0; j < nth; ++j)
+            for (int i = 0; i < nT; ++i) {
+                const double v = t->rounded.values[static_cast<size_t>(j) * nT + i];
+                double step = 0;
+                if (i + 1 < nT) step += std::fabs(t->rounded.values[static_cast<size_t>(j) * nT + i + 1] - v);
+                if (j + 1 < nth) step += std::fabs(t->rounded.values[static_cast<size_t>(j + 1) * nT + i] - v);
+                jump = std::max(jump, step);
+            }
+    }
+    const double extra = 2.0 * weight_error * jump;
+    std::printf("[ filter ] weight error %.3g, largest cell jump %.3g: extra tolerance %.3g\n", weight_error, jump, extra);
+    std::string error;
+    const std::vector<float> got = run_on_gpu(glsl_compute_source("#define SLUT_TIER_FAST\n"), &error);
+    ASSERT_EQ(error, "");
+    expect_agreement(got, "glsl_fast", this, extra);
 #endif
 }
 

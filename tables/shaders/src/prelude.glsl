@@ -11,6 +11,7 @@
 #define SLUT_TEXEL3D(t, i, j, k) texelFetch(t, ivec3(i, j, k), 0).r
 #define SLUT_FILTER2D(t, x, y) textureLod(t, vec2(x, y), 0.0).r
 #define SLUT_FILTER3D(t, x, y, z) textureLod(t, vec3(x, y, z), 0.0).r
+#define SLUT_TEXTURE_SIZE2D(t) vec2(textureSize(t, 0)) // width, height in texels
 #define SLUT_FLOAT3 vec3
 // Constant arrays of kernels/ (SLUT_CONST_ARRAY* there; one line each: GLSL before 4.20 has no line
 // continuation).

@@ -12,6 +12,7 @@
 #define SLUT_TEXEL3D(t, i, j, k) t.Load(int4(i, j, k, 0))
 #define SLUT_FILTER2D(t, x, y) t.SampleLevel(t##_sampler, float2(x, y), 0.0)
 #define SLUT_FILTER3D(t, x, y, z) t.SampleLevel(t##_sampler, float3(x, y, z), 0.0)
+#define SLUT_TEXTURE_SIZE2D(t) slut_texture_size2d(t) // width, height in texels
 #define SLUT_FLOAT3 float3
 // Constant arrays of kernels/ (SLUT_CONST_ARRAY* there).
 #define SLUT_CONST_ARRAY3(name, a0, a1, a2) static const float name[3] = {a0, a1, a2}
@@ -19,3 +20,8 @@
 #define SLUT_CONST_ARRAY8(name, a0, a1, a2, a3, a4, a5, a6, a7) static const float name[8] = {a0, a1, a2, a3, a4, a5, a6, a7}
 
 float slut_inf() { return asfloat(0x7F800000u); }
+float2 slut_texture_size2d(Texture2D<float> t) {
+    uint width, height;
+    t.GetDimensions(width, height);
+    return float2(float(width), float(height));
+}
