@@ -28,6 +28,10 @@ inline constexpr size_t kMaxAxes = 8;
 // the stored values changes (a reader must not silently mix definitions).
 inline constexpr const char *kKindAirlightF = "airlight_F";
 inline constexpr uint32_t kAirlightFQuantityVersion = 1;
+// Ĥ(x_m, x_t): the airlight's tail normalised, on rational axes (kernels/slut_airlight_rational.h;
+// the GPU snippets' fast tier; AirlightRationalTable, scatterlut/airlight_rational.hpp).
+inline constexpr const char *kKindAirlightRational = "airlight_rational";
+inline constexpr uint32_t kAirlightRationalQuantityVersion = 1;
 inline constexpr const char *kKindNearLightE3 = "near_light_E3"; // E(T, g, r), S = ∞
 inline constexpr const char *kKindNearLightE4 = "near_light_E4"; // E(T, g, r, S) on axes (T, g, r, q)
 // 2: E4 stores ln(E/B) on the slab axis q (warp nl_qodds); 1 stored ln E on a log S axis.
