@@ -216,12 +216,14 @@ TEST(AnisotropicTables, PlanListsOneTablePerPhase) {
     std::filesystem::remove(base + ".toml");
     ASSERT_EQ(s.exit_code, 0) << s.err;
     const nlohmann::json k = nlohmann::json::parse(s.out);
-    ASSERT_EQ(k["tables"].size(), 2u) << s.out;
+    ASSERT_EQ(k["tables"].size(), 3u) << s.out; // and airlight_rational, for medium c as airlight_F
     EXPECT_EQ(k["tables"][0]["kind"], "airlight_F");
     EXPECT_EQ(k["tables"][0]["phase_g"], 0.0);
     EXPECT_EQ(k["tables"][0]["requested_by"].size(), 1u); // medium c alone
     EXPECT_EQ(k["tables"][1]["file_stem"], "airlight_Fg_g0.5");
     EXPECT_EQ(k["tables"][1]["requested_by"].size(), 2u); // a and b
+    EXPECT_EQ(k["tables"][2]["kind"], "airlight_rational");
+    EXPECT_EQ(k["tables"][2]["requested_by"].size(), 1u); // medium c alone
     // the densest channel's σ_t = 0.91 times D_max = 10
     EXPECT_NE(k["tables"][1]["requested_by"][1]["need"].get<std::string>().find("u up to sigma_t*D_max = 9.1"),
               std::string::npos);

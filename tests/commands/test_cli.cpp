@@ -53,8 +53,8 @@ TEST(Cli, GenerateKtx2Only) {
     std::vector<std::string> names;
     for (const auto &e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());
     std::sort(names.begin(), names.end());
-    EXPECT_EQ(names, (std::vector<std::string>{"airlight_F.ktx2", "manifest.json", "near_light_E3.ktx2",
-                                               "near_light_E4.ktx2"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"airlight_F.ktx2", "airlight_rational.ktx2", "manifest.json",
+                                               "near_light_E3.ktx2", "near_light_E4.ktx2"}));
     {
         std::ifstream in(dir + "/airlight_F.ktx2", std::ios::binary);
         char id[12] = {};

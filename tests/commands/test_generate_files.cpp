@@ -32,8 +32,9 @@ namespace {
 using Bytes = std::vector<uint8_t>;
 using slut_test::run_scatterlut;
 
-const char *const kFiles[] = {"airlight_F.slut", "airlight_F.exr",     "near_light_E3.slut",
-                              "near_light_E3.exr", "near_light_E4.slut", "near_light_E4.exr"};
+const char *const kFiles[] = {"airlight_F.slut",    "airlight_F.exr",    "near_light_E3.slut",
+                              "near_light_E3.exr",  "near_light_E4.slut", "near_light_E4.exr",
+                              "airlight_rational.slut", "airlight_rational.exr"};
 
 Bytes read_all(const std::string &path) {
     std::ifstream in(path, std::ios::binary);

@@ -66,7 +66,7 @@ struct ExamplePlan {
     std::set<std::string> stems;
 };
 const ExamplePlan kExamples[] = {
-    {"fog_street.toml", {"airlight_F", "surface_G0", "surface_G50"}},
+    {"fog_street.toml", {"airlight_F", "surface_G0", "surface_G50", "airlight_rational"}},
     {"candle_wax.toml", {"near_light_E3"}},
     {"smoke_slab.toml", {"near_light_E4"}},
     {"forward_near_light.toml", {"near_light_E3_hg_g0.8", "near_light_E4_hg_g0.6"}},
@@ -100,7 +100,8 @@ TEST(ScenePlan, ClosedFormAndEmptyScenesSaySo) {
 
 TEST(ScenePlan, DefaultSceneHasEveryKind) {
     const nlohmann::json plan = plan_json("");
-    EXPECT_EQ(planned_kinds(plan), (std::set<std::string>{"airlight_F", "near_light_E3", "near_light_E4"}));
+    EXPECT_EQ(planned_kinds(plan),
+              (std::set<std::string>{"airlight_F", "near_light_E3", "near_light_E4", "airlight_rational"}));
     EXPECT_EQ(plan.at("scene").at("source"), "<default scene>");
 }
 
@@ -494,7 +495,8 @@ type = "directional"
 media = ["fog"]
 )";
     const scatterlut::ScenePlan p = scatterlut::derive_plan(scatterlut::parse_scene(text, "d.toml"), scatterlut::Storage::F32);
-    ASSERT_EQ(p.tables.size(), 2u);
+    ASSERT_EQ(p.tables.size(), 3u); // airlight_rational last, in the kinds' order
+    EXPECT_STREQ(p.tables[2].name(), "airlight_rational");
     EXPECT_STREQ(p.tables[0].name(), "airlight_F");
     EXPECT_DOUBLE_EQ(p.tables[0].plan_as<scatterlut::AirlightPlan>().u_max, 100.0); // σ_t·D_max = 1·100, beyond the series onset
     EXPECT_STREQ(p.tables[1].name(), "near_light_E4");

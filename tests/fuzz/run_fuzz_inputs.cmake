@@ -20,10 +20,11 @@ include("${SOURCE_DIR}/tables/io_sources.cmake") # the codecs of the runtime lib
 set(slut_io_sources ${SLUT_TABLE_IO_SOURCES} ${SLUT_TABLE_IO_NO_EXR_SOURCES})
 list(TRANSFORM slut_io_sources PREPEND tables/src/)
 foreach(s tables/src/table tables/src/sampler tables/src/airlight tables/src/nearlight tables/src/anisotropic
-          tables/src/airlight_hg tables/src/nearlight_hg tables/src/surface tables/src/surface_table ${slut_io_sources}
+          tables/src/airlight_hg tables/src/nearlight_hg tables/src/surface tables/src/surface_table
+          tables/src/airlight_rational ${slut_io_sources}
           host/src/eval host/src/json_guard host/src/scene host/src/kinds/runtime_registry
           host/src/kinds/airlight_runtime host/src/kinds/nearlight_runtime
-          host/src/kinds/surface_runtime)
+          host/src/kinds/surface_runtime host/src/kinds/airlight_rational_runtime)
   get_filename_component(name ${s} NAME)
   step(${CLANGXX} ${flags} -fsanitize=fuzzer-no-link -c ${SOURCE_DIR}/${s}.cpp -o ${WORK_DIR}/obj/${name}.o)
   list(APPEND objects ${WORK_DIR}/obj/${name}.o)

@@ -85,7 +85,7 @@ function compareValues(file, data, isHalf, want, stride = 1, rowsOf = 0) {
 	return n;
 }
 
-const kinds = ['airlight_F', 'near_light_E3', 'near_light_E4'];
+const kinds = ['airlight_F', 'near_light_E3', 'near_light_E4', 'airlight_rational'];
 for (const kind of kinds) {
 	const slutPath = join(dir, `${kind}.slut`);
 	if (!existsSync(slutPath)) {

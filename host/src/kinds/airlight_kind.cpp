@@ -198,6 +198,14 @@ public:
 
 } // namespace
 
+// What the airlight_rational kind (kinds/airlight_rational_kind.cpp), which serves the pairs
+// the isotropic kind serves, reuses of it: the strictest relative error in its add_demand's
+// state, and the media its report queries (media_of_phase at g = 0).
+double isotropic_airlight_demand_error(const std::any &state) {
+    return std::any_cast<const Demand &>(state).relative_error;
+}
+Scene isotropic_airlight_media(const Scene &scene) { return media_of_phase(scene, 0.0); }
+
 const std::vector<const TableKind *> &airlight_table_kinds() {
     static const AirlightKind<AirlightTable> isotropic;
     static const AirlightKind<AirlightHgTable> anisotropic;

@@ -10,11 +10,13 @@ namespace scatterlut {
 const std::vector<const TableKind *> &airlight_table_kinds();   // kinds/airlight_kind.cpp
 const std::vector<const TableKind *> &near_light_table_kinds(); // kinds/nearlight_kind.cpp
 const std::vector<const TableKind *> &surface_table_kinds();    // kinds/surface_kind.cpp
+const std::vector<const TableKind *> &airlight_rational_table_kinds(); // kinds/airlight_rational_kind.cpp
 
 const std::vector<const TableKind *> &table_kinds() {
     static const std::vector<const TableKind *> kinds = [] {
         std::vector<const TableKind *> defined, ordered;
-        for (const auto *of_file : {&airlight_table_kinds(), &near_light_table_kinds(), &surface_table_kinds()})
+        for (const auto *of_file : {&airlight_table_kinds(), &near_light_table_kinds(), &surface_table_kinds(),
+                                    &airlight_rational_table_kinds()})
             defined.insert(defined.end(), of_file->begin(), of_file->end());
         for (const RuntimeKind *runtime : runtime_kinds())
             for (const TableKind *k : defined)

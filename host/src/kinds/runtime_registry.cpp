@@ -5,6 +5,8 @@
 
 namespace scatterlut {
 
+const RuntimeKind &airlight_rational_runtime_kind(); // kinds/airlight_rational_runtime.cpp
+
 const std::vector<const RuntimeKind *> &runtime_kinds() {
     static const std::vector<const RuntimeKind *> kinds = {
         &airlight_runtime_kind(false),          // airlight_F
@@ -13,7 +15,8 @@ const std::vector<const RuntimeKind *> &runtime_kinds() {
         &airlight_runtime_kind(true),           // airlight_Fg
         &near_light_runtime_kind(false, true),  // near_light_E3_hg
         &near_light_runtime_kind(true, true),   // near_light_E4_hg
-        &surface_runtime_kind()};               // surface_G
+        &surface_runtime_kind(),                // surface_G
+        &airlight_rational_runtime_kind()};     // airlight_rational
     return kinds;
 }
 
