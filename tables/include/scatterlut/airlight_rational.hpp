@@ -53,9 +53,10 @@ public:
     // negative), by the snippets' tiers' path in double (kernels/slut_airlight_rational.h:
     // slut_airlight_rational_setup_of, two samples, slut_airlight_rational_radiance): the two
     // ends' terms' difference, with at most 2G − 1 times the samples' relative error (G =
-    // SLUT_AIRLIGHT_RATIONAL_GAIN), or the short segment's rule where that would cancel. D as
-    // that set-up serves it: within [SLUT_SQUARABLE_MIN, SLUT_SQUARABLE_MAX] (1e∓150), a length
-    // beyond SLUT_SQUARABLE_MAX an infinite ray.
+    // SLUT_AIRLIGHT_RATIONAL_GAIN), or the short segment's rule where that would cancel. The
+    // query as that set-up serves it: D within [SLUT_SQUARABLE_MIN, SLUT_SQUARABLE_MAX] (1e∓150;
+    // clamped there), a length beyond SLUT_SQUARABLE_MAX an infinite ray, σ_s·I0 a finite double
+    // (beyond, its scale is ∞·e^{−σ_t D}: NaN where that exponential underflows).
     double radiance(const AirlightQuery &q) const;
     // The same for `count` queries (a loop over radiance()): every query is checked before
     // anything is written (std::invalid_argument naming the first bad query's index and field,
