@@ -22,9 +22,10 @@
 // 32 x 32 pixel tile has its own lamp, at D log-uniform in [1, 100] m in a direction uniform
 // on the sphere, fog σ_s log-uniform in [0.004, 0.4] per m, σ_a = σ_s/20, I0 = 100 W/sr.
 //
-// The tiers' tables: the airlight_rational kind at the sizes the planner gives the tiers'
-// radiance targets (fast: 1e-3, accurate: 1.5e-4; kinds/airlight_rational_kind.cpp), generated
-// on the OpenCL device as `scatterlut generate` does; airlight_F: the default plan.
+// The tiers' tables: airlight_rational tables sized for the tiers' radiance targets (fast: 1e-3,
+// accurate: 1.5e-4, issue #31) by their measured interpolation error, as the planner sizes them
+// (kinds/airlight_rational_kind.cpp), generated on the OpenCL device as `scatterlut generate`
+// does; airlight_F: the default plan.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -33,6 +34,7 @@
 #include <vector>
 
 #include "generate_airlight.hpp"
+#include "generate_airlight_rational.hpp"
 #include "gpu_bench.hpp"
 #include "opencl_device.hpp"
 #include "scatterlut/airlight.hpp"
@@ -96,14 +98,24 @@ std::vector<float> make_scene(int width, int height) {
     return geo;
 }
 
-// The airlight_rational table at n x n nodes (f32), Hn by slut_airlight_rational_node.
-std::vector<float> rational_table(int n) {
-    std::vector<float> hn(static_cast<size_t>(n) * n);
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i)
-            hn[static_cast<size_t>(j) * n + i] = static_cast<float>(
-                slut_airlight_rational_node(static_cast<double>(i) / (n - 1), static_cast<double>(j) / (n - 1), 1.0));
-    return hn;
+// The airlight_rational table for a radiance target: the smallest square of kSizes whose
+// measured interpolation error (measure_airlight_rational_sampling, 20000 points) times the
+// difference's gain 2G − 1 is within the target, generated on the OpenCL device as `scatterlut
+// generate` does (f32).
+scatterlut::Table rational_table(scatterlut::Device &device, double radiance_target) {
+    static const int kSizes[] = {32, 48, 64, 96, 128, 192, 256, 384, 512};
+    scatterlut::Table table;
+    for (int n : kSizes) {
+        scatterlut::AirlightRationalPlan plan;
+        plan.n_m = plan.n_t = n;
+        table = scatterlut::make_airlight_rational_layout(plan);
+        table.values = scatterlut::integrate_airlight_rational(device, table, plan.integration_tolerance);
+        for (double &v : table.values) v = scatterlut::round_to_storage(v, plan.storage);
+        const double error = scatterlut::measure_airlight_rational_sampling(scatterlut::AirlightRationalTable(table),
+                                                                            20000, 1).max_rel;
+        if ((2.0 * SLUT_AIRLIGHT_RATIONAL_GAIN - 1.0) * error <= radiance_target) break;
+    }
+    return table;
 }
 
 } // namespace
@@ -118,12 +130,10 @@ int run_airlight_scene(const gpu_harness::Gl &gl, const Options &opt) {
         }
     }
     // The default airlight_F table, as `scatterlut generate` makes it (f32 storage).
+    scatterlut::Device device("");
     const scatterlut::AirlightPlan plan;
     scatterlut::Table table = scatterlut::make_airlight_table_layout(plan);
-    {
-        scatterlut::Device device("");
-        table.values = scatterlut::integrate_airlight_ln_gs(device, table);
-    }
+    table.values = scatterlut::integrate_airlight_ln_gs(device, table);
     for (double &v : table.values) v = scatterlut::round_to_storage(v, plan.storage);
     const int u_count = table.axes[0].map.count, w_count = table.axes[1].map.count;
 
@@ -141,7 +151,8 @@ int run_airlight_scene(const gpu_harness::Gl &gl, const Options &opt) {
         std::fprintf(stderr, "scatterlut_gpu_bench: cannot read the airlight snippet or bench/shaders/*.glsl\n");
         return 1;
     }
-    const int fast_count = 64, accurate_count = 128;
+    const scatterlut::Table fast_table = rational_table(device, 1e-3), accurate_table = rational_table(device, 1.5e-4);
+    const int fast_count = fast_table.axes[0].map.count, accurate_count = accurate_table.axes[0].map.count;
     const std::string inputs = "in0.x, in0.y, in0.z, in0.w, in1.x, in1.y, in1.z"; // ss, sa, I0, D, sin, cos, s
     auto tier = [&](const char *define, int n) {
         return std::string("#define ") + define + "\nlayout(binding = 0) uniform sampler2D hn_table;\n" + snippet +
@@ -157,10 +168,11 @@ int run_airlight_scene(const gpu_harness::Gl &gl, const Options &opt) {
     std::vector<Method> methods = {
         {"fast", "SLUT_TIER_FAST, airlight_rational " + std::to_string(fast_count) + "², one filtered fetch per sample",
          fragment_source(tier("SLUT_TIER_FAST", fast_count), 2, tier_call), GL_TEXTURE_2D,
-         make_texture(gl, rational_table(fast_count), fast_count, fast_count)},
+         make_texture(gl, std::vector<float>(fast_table.values.begin(), fast_table.values.end()), fast_count, fast_count)},
         {"accurate", "SLUT_TIER_ACCURATE, airlight_rational " + std::to_string(accurate_count) + "², texel fetches",
          fragment_source(tier("SLUT_TIER_ACCURATE", accurate_count), 2, tier_call), GL_TEXTURE_2D,
-         make_texture(gl, rational_table(accurate_count), accurate_count, accurate_count)},
+         make_texture(gl, std::vector<float>(accurate_table.values.begin(), accurate_table.values.end()), accurate_count,
+                      accurate_count)},
         {"airlight_F", "no tier: the airlight_F table, texel fetches", fragment_source(table_F + snippet, 2, F_call),
          GL_TEXTURE_2D, make_texture(gl, std::vector<float>(table.values.begin(), table.values.end()), u_count, w_count)},
         {"sun2005", "Sun et al. 2005, 64² F table, two fetches",
