@@ -102,7 +102,8 @@ SLUT_FN slut_airlight_rational_setup slut_airlight_rational_setup_of(double sigm
     int finite_ray = (s <= SLUT_SQUARABLE_MAX) ? 1 : 0;
     r.kind = (!(sigma_s > 0.0) || !(intensity > 0.0) || !(s > 0.0)) ? 1 : 0;
     if (r.kind == 0 && !(sg > 0.0) && cos_gamma > 0.0 && s >= D) r.kind = 2;
-    r.scale = sigma_s * intensity * (0.5 / SLUT_PI) * exp(-sigma_t * D);
+    /* I0 e^{−σ_t D} first: a σ_s I0 beyond the range never meets an e^{−σ_t D} that underflowed (∞·0) */
+    r.scale = (sigma_s * (0.5 / SLUT_PI)) * (intensity * exp(-sigma_t * D));
     double h = D * fmax(sg, SLUT_TINY);
     double q2 = D * ((cos_gamma > 0.0) ? sg * (sg / (1.0 + cos_gamma)) : 1.0 - cos_gamma);
     r.x_m2 = slut_airlight_rational_x_m(sigma_t * (h + q2));

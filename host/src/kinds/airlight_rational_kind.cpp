@@ -24,8 +24,6 @@ extern "C" {
 
 namespace scatterlut {
 
-// Its runtime facet: kinds/airlight_rational_runtime.cpp.
-const RuntimeKind &airlight_rational_runtime_kind();
 // Of the isotropic airlight kind (kinds/airlight_kind.cpp), whose pairs this kind serves: the
 // strictest relative error its add_demand gathered in `state`, and the scene's isotropic media
 // the viewer is inside, one grey copy per colour channel (the report's queries).

@@ -104,6 +104,7 @@ private:
 const RuntimeKind &airlight_runtime_kind(bool anisotropic);
 const RuntimeKind &near_light_runtime_kind(bool finite_thickness, bool anisotropic);
 const RuntimeKind &surface_runtime_kind();
+const RuntimeKind &airlight_rational_runtime_kind(); // the GPU tiers' airlight table
 
 // Every kind's runtime facet, in the registry's order.
 const std::vector<const RuntimeKind *> &runtime_kinds();

@@ -5,8 +5,6 @@
 
 namespace scatterlut {
 
-const RuntimeKind &airlight_rational_runtime_kind(); // kinds/airlight_rational_runtime.cpp
-
 const std::vector<const RuntimeKind *> &runtime_kinds() {
     static const std::vector<const RuntimeKind *> kinds = {
         &airlight_runtime_kind(false),          // airlight_F
