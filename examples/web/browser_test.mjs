@@ -4,8 +4,11 @@
 // generates the default tables (--format all) into WORK_DIR/tables, renders
 // WORK_DIR/table.png with render_fog (C++, the tables through scatterlut::tables), opens
 // the page (?test=1, render_fog's exposure) in Chromium with SwiftShader's WebGL2, reads
-// the frame back (WORK_DIR/browser.png) and requires PSNR >= 40 dB between the two
-// tone-mapped 8-bit images; then opens the interactive page and waits for its controls.
+// the frame back (WORK_DIR/browser_<tier>.png) and requires PSNR >= 40 dB between the two
+// tone-mapped 8-bit images, once per tier of the snippets (fast, accurate, airlight_F:
+// docs/SHADERS.md, "Tiers"; fog.mjs's tier parameter), printing each tier's first frame (its
+// shader's build on SwiftShader, then one draw); then opens the interactive page and waits for
+// its controls.
 // Without Chromium or the npm modules (npm ci in examples/web) it prints "skipped: ..."
 // and exits 77, or fails with --require.
 import { execFileSync } from 'node:child_process';
@@ -93,17 +96,24 @@ const browser = await puppeteer.launch({
 	// page wait short.
 	protocolTimeout: kPageWait_ms + 60000,
 });
-let frame;
+const kTiers = ['fast', 'accurate', 'airlight_F'];
+const frames = {};
 try {
-	const page = await browser.newPage();
-	const logs = [];
-	page.on('console', (m) => logs.push(m.text()));
-	await page.goto(`http://127.0.0.1:${server.address().port}/?test=1&exposure=${exposure}`);
-	await page.waitForFunction('window.slutDone || window.slutError', { timeout: kPageWait_ms });
-	const error = await page.evaluate('window.slutError');
-	if (error) throw new Error(`page failed: ${error}\n${logs.join('\n')}`);
-	frame = await page.evaluate('window.slutFrame');
-	phase('fixed view rendered and read back');
+	for (const tier of kTiers) {
+		const page = await browser.newPage();
+		const logs = [];
+		page.on('console', (m) => logs.push(m.text()));
+		const start = Date.now();
+		await page.goto(`http://127.0.0.1:${server.address().port}/?test=1&tier=${tier}&exposure=${exposure}`);
+		await page.waitForFunction('window.slutDone || window.slutError', { timeout: kPageWait_ms });
+		const error = await page.evaluate('window.slutError');
+		if (error) throw new Error(`page (tier ${tier}) failed: ${error}\n${logs.join('\n')}`);
+		const ran = await page.evaluate('window.slutTier');
+		if (ran !== tier) throw new Error(`tier ${tier} asked, ${ran} ran: ${logs.join('\n')}`);
+		frames[tier] = await page.evaluate('window.slutFrame');
+		phase(`tier ${tier}: fixed view rendered and read back, first frame (load, build, draw) ${((Date.now() - start) / 1000).toFixed(1)} s`);
+		await page.close();
+	}
 	// The interactive page (no test parameter) comes up with its controls and no error.
 	const live = await browser.newPage();
 	await live.goto(`http://127.0.0.1:${server.address().port}/`);
@@ -138,19 +148,23 @@ function encodePng(width, height, rgb) {
 	for (let y = 0; y < height; y++) for (let x = 0; x < width * 3; x++) raw[y * (width * 3 + 1) + 1 + x] = rgb[y * width * 3 + x];
 	return Buffer.concat([Buffer.from([137, 80, 78, 71, 13, 10, 26, 10]), chunk('IHDR', ihdr), chunk('IDAT', deflateSync(raw)), chunk('IEND', Buffer.alloc(0))]);
 }
-writeFileSync(join(work, 'browser.png'), encodePng(cpp.width, cpp.height, frame));
-
-if (frame.length !== cpp.img.length) throw new Error(`frame has ${frame.length} values, the C++ picture ${cpp.img.length}`);
-let mse = 0, max = 0;
-for (let k = 0; k < frame.length; k++) {
-	const d = frame[k] - cpp.img[k];
-	mse += d * d;
-	max = Math.max(max, Math.abs(d));
+let failed = false;
+for (const tier of kTiers) {
+	const frame = frames[tier];
+	writeFileSync(join(work, `browser_${tier}.png`), encodePng(cpp.width, cpp.height, frame));
+	if (frame.length !== cpp.img.length) throw new Error(`frame has ${frame.length} values, the C++ picture ${cpp.img.length}`);
+	let mse = 0, max = 0;
+	for (let k = 0; k < frame.length; k++) {
+		const d = frame[k] - cpp.img[k];
+		mse += d * d;
+		max = Math.max(max, Math.abs(d));
+	}
+	mse /= frame.length;
+	const psnr = mse > 0 ? 10 * Math.log10((255 * 255) / mse) : Infinity;
+	console.log(`tier ${tier}: browser (Chromium, SwiftShader WebGL2) vs render_fog: ${cpp.width}x${cpp.height}, PSNR ${psnr.toFixed(2)} dB, max |diff| ${max} levels, exposure ${exposure}`);
+	if (!(psnr >= 40)) {
+		console.error(`FAIL: tier ${tier}: PSNR below 40 dB`);
+		failed = true;
+	}
 }
-mse /= frame.length;
-const psnr = mse > 0 ? 10 * Math.log10((255 * 255) / mse) : Infinity;
-console.log(`browser (Chromium, SwiftShader WebGL2) vs render_fog: ${cpp.width}x${cpp.height}, PSNR ${psnr.toFixed(2)} dB, max |diff| ${max} levels, exposure ${exposure}`);
-if (!(psnr >= 40)) {
-	console.error('FAIL: PSNR below 40 dB');
-	process.exit(1);
-}
+if (failed) process.exit(1);

@@ -5,7 +5,11 @@
 // ray meets the wax slab, the near light through its face; Reinhard + sRGB as render_fog.
 //
 // URL parameters: exposure=X (render_fog prints it; default: a night-scene value),
-// test=1 (fixed view, no controls; sets window.slutDone when the frame is drawn).
+// test=1 (fixed view, no controls; sets window.slutDone when the frame is drawn),
+// tier=fast|accurate|airlight_F (docs/SHADERS.md, "Tiers"; default fast): fast and accurate
+// sample the airlight_rational table (fast: hardware filtering, which needs WebGL2's
+// OES_texture_float_linear for R32F textures; without it the page takes the accurate tier),
+// airlight_F the airlight_F table as the C++ runtime does.
 import * as THREE from 'three';
 import { KTX2Loader } from 'three/addons/loaders/KTX2Loader.js';
 import { read } from 'three/addons/libs/ktx-parse.module.js';
@@ -14,6 +18,12 @@ import { metadataFromKtx2KeyValue } from './slut.mjs';
 const W = 480, H = 270; // render_fog's image
 const params = new URLSearchParams(location.search);
 const testMode = params.has('test');
+// The snippets' tier: its define, and the airlight table it samples.
+const kTiers = {
+	fast: { define: 'SLUT_TIER_FAST', airlight: 'airlight_rational' },
+	accurate: { define: 'SLUT_TIER_ACCURATE', airlight: 'airlight_rational' },
+	airlight_F: { define: '', airlight: 'airlight_F' },
+};
 
 // The scene of render_fog.cpp (metres, 1/m; y up, camera looking down -z).
 const scene = {
@@ -34,24 +44,26 @@ async function text(url) {
 }
 
 // A table: its texture (KTX2Loader) and its metadata (ktx-parse key/value data).
-async function loadTable(loader, url) {
+// filter: THREE.LinearFilter for the fast tier's hardware filtering, else NearestFilter (the
+// texelFetch paths need no float filtering).
+async function loadTable(loader, url, filter) {
 	const r = await fetch(url);
 	if (!r.ok) throw new Error(`${url}: HTTP ${r.status} (generate the tables with --format all)`);
 	const bytes = await r.arrayBuffer();
 	const meta = metadataFromKtx2KeyValue(read(new Uint8Array(bytes)).keyValue);
 	const texture = await new Promise((ok, no) => loader.parse(bytes, ok, no));
-	texture.minFilter = texture.magFilter = THREE.NearestFilter; // texelFetch path: no float filtering needed
+	texture.minFilter = texture.magFilter = filter;
 	texture.needsUpdate = true;
 	return { texture, meta };
 }
 
 const axisUniform = (a) => new THREE.Vector4(a.min, a.max, a.scale, a.count);
 
-function fragmentShader(airlightSnippet, nearSnippet) {
-	return airlightSnippet + nearSnippet + /* glsl */ `
+function fragmentShader(tierDefine, airlightSnippet, nearSnippet) {
+	return (tierDefine ? `#define ${tierDefine}\n` : '') + airlightSnippet + nearSnippet + /* glsl */ `
 uniform sampler2D airlight_table;
 uniform sampler3D near_table;
-uniform vec4 air_u, air_w;                 // min, max, scale, count of the airlight axes u, w
+uniform vec4 air_u, air_w;                 // min, max, scale, count of the airlight axes (u, w; tiers: x_m, x_t)
 uniform vec4 near_T, near_g, near_r;       // of the E3 axes T, g, r
 uniform ivec3 near_warps;
 uniform vec3 eye, fwd, right, up;
@@ -88,7 +100,11 @@ void main() {
 		p = eye + t * d;
 		if (t < s && p.x >= kSlabX0 && p.x <= kSlabX1 && p.y >= 0.0 && p.y <= kSlabH) { s = t; slab = true; }
 	}
+#if defined(SLUT_TIER_FAST) || defined(SLUT_TIER_ACCURATE)
+	SlutAirlightTable air = slut_airlight_table(int(air_u.w), int(air_w.w));
+#else
 	SlutAirlightTable air = slut_airlight_table(air_u.y, air_u.z, int(air_u.w), air_w.x, int(air_w.w));
+#endif
 	SlutNearLightTable e3 = slut_near_light_table_e3(
 		slut_axis_make(near_T.x, near_T.y, near_T.z, near_warps.x, int(near_T.w)),
 		slut_axis_make(near_g.x, near_g.y, near_g.z, near_warps.y, int(near_g.w)),
@@ -122,14 +138,22 @@ async function main() {
 	renderer.setPixelRatio(1);
 	renderer.setSize(W, H, false);
 	const loader = new KTX2Loader().detectSupport(renderer);
+	let tierName = params.get('tier') ?? 'fast';
+	if (!(tierName in kTiers)) throw new Error(`tier=${tierName}: expected one of ${Object.keys(kTiers).join(', ')}`);
+	if (tierName === 'fast' && !renderer.extensions.has('OES_texture_float_linear')) {
+		console.warn('OES_texture_float_linear missing: R32F tables cannot be filtered; the accurate tier instead');
+		tierName = 'accurate';
+	}
+	const tier = kTiers[tierName];
+	const filter = tierName === 'fast' ? THREE.LinearFilter : THREE.NearestFilter;
 	const [air, near, airSnippet, nearSnippet] = await Promise.all([
-		loadTable(loader, 'tables/airlight_F.ktx2'), loadTable(loader, 'tables/near_light_E3.ktx2'),
+		loadTable(loader, `tables/${tier.airlight}.ktx2`, filter), loadTable(loader, 'tables/near_light_E3.ktx2', filter),
 		text('shaders/scatterlut_airlight.essl'), text('shaders/scatterlut_nearlight.essl'),
 	]);
-	if (air.meta.kind !== 'airlight_F' || near.meta.kind !== 'near_light_E3')
+	if (air.meta.kind !== tier.airlight || near.meta.kind !== 'near_light_E3')
 		throw new Error(`unexpected tables ${air.meta.kind}, ${near.meta.kind}`);
 	// slut_airlight_table() takes the default airlight axes: u log1p from 0, w asinh_cot to pi/2.
-	if (air.meta.axes[0].warpName !== 'log1p' || air.meta.axes[1].warpName !== 'asinh_cot')
+	if (tier.airlight === 'airlight_F' && (air.meta.axes[0].warpName !== 'log1p' || air.meta.axes[1].warpName !== 'asinh_cot'))
 		throw new Error('airlight_F: expected axes u (log1p) and w (asinh_cot)');
 	const [au, aw] = air.meta.axes, [nT, ng, nr] = near.meta.axes;
 	const uniforms = {
@@ -149,7 +173,7 @@ async function main() {
 	const material = new THREE.RawShaderMaterial({
 		glslVersion: THREE.GLSL3, uniforms,
 		vertexShader: 'in vec3 position;\nvoid main() { gl_Position = vec4(position.xy, 0.0, 1.0); }\n',
-		fragmentShader: fragmentShader(airSnippet, nearSnippet),
+		fragmentShader: fragmentShader(tier.define, airSnippet, nearSnippet),
 	});
 	const quad = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), material);
 	const root = new THREE.Scene();
@@ -185,13 +209,19 @@ async function main() {
 			for (let x = 0; x < W; x++)
 				for (let c = 0; c < 3; c++) rgb[(y * W + x) * 3 + c] = rgba[((H - 1 - y) * W + x) * 4 + c];
 		window.slutFrame = rgb;
+		window.slutTier = tierName; // the tier that ran (fast falls back to accurate without float filtering)
 		window.slutDone = true;
 		return;
 	}
 
-	// Interactive: camera yaw/pitch, the small lamp's position, the media's sigma.
+	// Interactive: the tier (reloads the page), camera yaw/pitch, the small lamp's position, the
+	// media's sigma.
 	const { GUI } = await import('three/addons/libs/lil-gui.module.min.js');
 	const gui = new GUI();
+	gui.add({ tier: tierName }, 'tier', Object.keys(kTiers)).name('tier (docs/SHADERS.md)').onChange((t) => {
+		params.set('tier', t);
+		location.search = params.toString();
+	});
 	const view = { yawDeg: 0, pitchDeg: 1.3, eyeX: 0, eyeZ: 0 };
 	const aim = () => {
 		scene.eye.set(view.eyeX, 1.7, view.eyeZ);
