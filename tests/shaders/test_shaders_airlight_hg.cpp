@@ -447,7 +447,10 @@ std::vector<float> run_on_gpu(const std::string &source, double g, std::string *
 }
 #endif
 
-void expect_agreement(const std::vector<float> &got, double g, const std::string &run, ::testing::Test *test) {
+// filter_weight_error: the fast tier's (SLUT_TIER_FAST: the hardware filter), which moves the
+// filtered ln G~_g by that error times the cell's jump (twice that on the radiance: two samples).
+void expect_agreement(const std::vector<float> &got, double g, const std::string &run, ::testing::Test *test,
+                      double filter_weight_error = 0.0) {
     const std::vector<Query> &qs = queries(g);
     ASSERT_EQ(got.size(), qs.size());
     std::vector<double> reference;
@@ -458,9 +461,9 @@ void expect_agreement(const std::vector<float> &got, double g, const std::string
             if (qs[i].label == label) indices.push_back(i);
         if (indices.empty()) continue; // kPeakOnlyG: G~_g only
         const auto tolerance = [&](size_t i) {
-            return label == "Gs" ? kTolGs + kTexelRounding * qs[i].cell_jump + qs[i].own_tolerance
+            return label == "Gs" ? kTolGs + (kTexelRounding + filter_weight_error) * qs[i].cell_jump + qs[i].own_tolerance
                                  : kTolRadiance + kTolPerOpticalDistance * qs[i].optical_distance +
-                                       2.0 * kTexelRounding * qs[i].cell_jump;
+                                       2.0 * (kTexelRounding + filter_weight_error) * qs[i].cell_jump;
         };
         const Stats st = error_stats(got, reference, indices, tolerance);
         double jump = 0;
@@ -588,6 +591,23 @@ TEST_F(GpuAirlightHg, GlslMatchesTheCppSamplerAndTheExactRadiance) {
         const std::vector<float> got = run_on_gpu(glsl_compute_source(false), g, &error);
         ASSERT_EQ(error, "");
         expect_agreement(got, g, "glsl", this);
+    }
+#endif
+}
+
+// The fast tier (SLUT_TIER_FAST: one hardware-filtered fetch per sample), at the filter's
+// measured weight error on top of the tolerances above.
+TEST_F(GpuAirlightHg, GlslFastTierMatchesTheCppSampler) {
+#if SLUT_HAVE_EGL
+    const double weight_error = hardware_filter_weight_error();
+    ASSERT_GE(weight_error, 0.0) << "the ramp shader failed";
+    for (double g : all_phase_gs()) {
+        std::string error;
+        const std::vector<float> got = run_on_gpu(
+            airlight_gpu_test::glsl_compute_source(snippet("glsl"), kParams, kTestBody, "#define SLUT_TIER_FAST\n"), g,
+            &error);
+        ASSERT_EQ(error, "");
+        expect_agreement(got, g, "glsl_fast", this, weight_error);
     }
 #endif
 }

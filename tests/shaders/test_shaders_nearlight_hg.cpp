@@ -306,8 +306,10 @@ constexpr double kTolE = 1e-5, kTolPerLnE = 2e-7, kTolRadiance = 1e-5, kTolClose
 // over the path's arc (kernels/slut_phase_arc.h in float), adds below 1e-6 (the medians), its
 // maxima are the float geometry's as the distant form's (docs/SHADERS.md).
 
+// filter_extra: the fast tier's (SLUT_TIER_FAST: the hardware filter) on the table's E, added to
+// every table tolerance.
 void expect_agreement(const std::vector<float> &got, double phase_g, bool slab, const std::string &run,
-                      ::testing::Test *test) {
+                      ::testing::Test *test, double filter_extra = 0.0) {
     const std::vector<Query> &qs = queries(phase_g, slab);
     ASSERT_EQ(got.size(), qs.size());
     std::vector<double> reference;
@@ -322,7 +324,7 @@ void expect_agreement(const std::vector<float> &got, double phase_g, bool slab, 
             const Query &q = qs[i];
             const double geometry = kTolPerConditioning * q.conditioning;
             const double T = label == "E" ? q.gpu[2] : 0.0;
-            const double table_part = kTolE + kTolPerLnE * std::fabs(q.ln_E);
+            const double table_part = kTolE + kTolPerLnE * std::fabs(q.ln_E) + filter_extra;
             if (label == "distant") return kTolClosedForm + geometry;
             if (label == "thin") return kTolClosedForm + geometry;
             if (label == "E") return table_part + kTolDivisorPerT * T;
@@ -420,6 +422,33 @@ TEST_F(GpuNearLightHg, GlslMatchesTheCppSampler) {
             const std::vector<float> got = run_on_gpu(glsl_compute_source(false), phase_g, slab, &error);
             ASSERT_EQ(error, "");
             expect_agreement(got, phase_g, slab, "glsl", this);
+        }
+#endif
+}
+
+// The fast tier (SLUT_TIER_FAST: the isotropic snippet's hardware filter, one trilinear fetch
+// per layer): the filter's measured weight error times the largest jump of the stored value
+// across a cell (all three axes at once) moves E by at most that, relatively.
+TEST_F(GpuNearLightHg, GlslFastTierMatchesTheCppSampler) {
+#if SLUT_HAVE_EGL
+    const double weight_error = hardware_filter_weight_error();
+    ASSERT_GE(weight_error, 0.0) << "the ramp shader failed";
+    for (double phase_g : kPhaseGs)
+        for (bool slab : {false, true}) {
+            const Texture &t = table_for(phase_g, slab);
+            const auto &ax = t.rounded.axes;
+            const size_t n0 = static_cast<size_t>(ax[0].map.count), n1 = static_cast<size_t>(ax[1].map.count) * t.layers();
+            double jump = 0;
+            for (size_t k = 0; k + n0 * n1 < t.texels.size(); ++k)
+                jump = std::max(jump, double{std::fabs(t.texels[k + 1] - t.texels[k]) +
+                                             std::fabs(t.texels[k + n0] - t.texels[k]) +
+                                             std::fabs(t.texels[k + n0 * n1] - t.texels[k])});
+            std::string error;
+            const std::vector<float> got = run_on_gpu(
+                nearlight_gpu_test::glsl_compute_source(snippet("glsl"), kTestBody, "#define SLUT_TIER_FAST\n"), phase_g,
+                slab, &error);
+            ASSERT_EQ(error, "");
+            expect_agreement(got, phase_g, slab, "glsl_fast", this, 2.0 * weight_error * jump);
         }
 #endif
 }
