@@ -126,7 +126,7 @@ int run_nearlight_scene(const gpu_harness::Gl &gl, const Options &opt) {
     };
     const std::string table_call =
         "slut_near_light_radiance(ln_e_table, slut_near_light_table_e3(" + axes + "), " + args + ")";
-    const GLuint texture = make_texture(gl, std::vector<float>(table.values.begin(), table.values.end()),
+    const GLuint texture = gpu_harness::make_r32f_texture(gl, std::vector<float>(table.values.begin(), table.values.end()),
                                         table.axes[0].map.count, table.axes[1].map.count, table.axes[2].map.count);
     std::vector<Method> methods = {
         {"nearlight_fast", "SLUT_TIER_FAST, default E3, one filtered fetch",

@@ -43,28 +43,6 @@ inline double median_of(std::vector<double> v) {
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-// A table as an R32F texture, GL_LINEAR without mipmaps, clamp-to-edge (what the hardware
-// filter paths need; texelFetch ignores both); depth 0: 2-D.
-inline GLuint make_texture(const gpu_harness::Gl &gl, const std::vector<float> &texels, int width, int height,
-                           int depth = 0) {
-    const GLenum target = depth > 0 ? GL_TEXTURE_3D : GL_TEXTURE_2D;
-    GLuint texture = 0;
-    gl.glGenTextures(1, &texture);
-    gl.glBindTexture(target, texture);
-    gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    if (depth > 0)
-        gl.glTexImage3D(target, 0, GL_R32F, width, height, depth, 0, GL_RED, GL_FLOAT, texels.data());
-    else
-        gl.glTexImage2D(target, 0, GL_R32F, width, height, 0, GL_RED, GL_FLOAT, texels.data());
-    gl.glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    gl.glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    gl.glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl.glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    gl.glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
-    gl.glTexParameteri(target, GL_TEXTURE_MAX_LEVEL, 0);
-    return texture;
-}
-
 // One method: a fragment program over the scene's inputs and the texture it samples (unit 0).
 struct Method {
     std::string name, what;

@@ -196,6 +196,28 @@ inline std::string build_program(const Gl &gl, const std::string &source, GLuint
     return build_program_stages(gl, {{GL_COMPUTE_SHADER, source}}, program);
 }
 
+// A table as an R32F texture (width x height, or x depth for depth > 0), bound to the active
+// unit: GL_LINEAR without mipmaps and CLAMP_TO_EDGE (what the hardware-filter paths need; the
+// texelFetch paths ignore both).
+inline GLuint make_r32f_texture(const Gl &gl, const std::vector<float> &texels, int width, int height, int depth) {
+    const GLenum target = depth > 0 ? GL_TEXTURE_3D : GL_TEXTURE_2D;
+    GLuint texture = 0;
+    gl.glGenTextures(1, &texture);
+    gl.glBindTexture(target, texture);
+    gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    if (depth > 0)
+        gl.glTexImage3D(target, 0, GL_R32F, width, height, depth, 0, GL_RED, GL_FLOAT, texels.data());
+    else
+        gl.glTexImage2D(target, 0, GL_R32F, width, height, 0, GL_RED, GL_FLOAT, texels.data());
+    gl.glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl.glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl.glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    gl.glTexParameteri(target, GL_TEXTURE_MAX_LEVEL, 0);
+    return texture;
+}
+
 } // namespace gpu_harness
 
 #endif // SLUT_HAVE_EGL

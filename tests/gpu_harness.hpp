@@ -274,22 +274,8 @@ inline std::vector<float> run_compute(const std::string &source, const std::vect
         gl.glGetActiveUniform(program, static_cast<GLuint>(i), sizeof name, nullptr, &size, &type, name);
         if (type == GL_SAMPLER_2D || type == GL_SAMPLER_3D) gl.glUniform1i(gl.glGetUniformLocation(program, name), 0);
     }
-    GLuint texture = 0;
-    gl.glGenTextures(1, &texture);
     gl.glActiveTexture(GL_TEXTURE0);
-    const GLenum target = depth > 0 ? GL_TEXTURE_3D : GL_TEXTURE_2D;
-    gl.glBindTexture(target, texture);
-    gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    if (depth > 0)
-        gl.glTexImage3D(target, 0, GL_R32F, width, height, depth, 0, GL_RED, GL_FLOAT, texels.data());
-    else
-        gl.glTexImage2D(target, 0, GL_R32F, width, height, 0, GL_RED, GL_FLOAT, texels.data());
-    gl.glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    gl.glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    gl.glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl.glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    gl.glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
-    gl.glTexParameteri(target, GL_TEXTURE_MAX_LEVEL, 0);
+    const GLuint texture = make_r32f_texture(gl, texels, width, height, depth);
 
     GLuint buffers[3];
     gl.glGenBuffers(3, buffers);

@@ -145,6 +145,21 @@ inline void random_geometry(std::mt19937_64 &rng, Query *q, double *sigma_t, dou
     q->gpu[7] = static_cast<float>(s);
 }
 
+// A radiance query (mode 1: gpu[1..7] = σ_s, σ_a, I0, D, sin γ, cos γ, s) of random_geometry's
+// with albedo σ_s/σ_t uniform in [0.05, 1].
+inline Query random_radiance_query(std::mt19937_64 &rng) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    Query q;
+    double sigma_t = 0, I0 = 0;
+    random_geometry(rng, &q, &sigma_t, &I0);
+    const double albedo = 0.05 + 0.95 * unit(rng);
+    q.gpu[0] = 1;
+    q.gpu[1] = static_cast<float>(albedo * sigma_t);
+    q.gpu[2] = static_cast<float>((1.0 - albedo) * sigma_t);
+    q.gpu[3] = static_cast<float>(I0);
+    return q;
+}
+
 // The C++ query of the seven radiance inputs a[0..6] = sigma_s, sigma_a (1/m), I0 (W/sr), D (m),
 // sin gamma, cos gamma, s (m; +inf: an infinite ray), as the GPU gets them (float-rounded).
 inline scatterlut::AirlightQuery cpp_query(const float *a) {

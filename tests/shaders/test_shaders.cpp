@@ -98,14 +98,7 @@ std::vector<Query> make_queries() {
     // Radiance over the acceptance domain of docs/AIRLIGHT.md and beyond it
     // (airlight_gpu_test::random_geometry).
     for (int i = 0; i < 3000; ++i) {
-        Query q;
-        double sigma_t = 0, I0 = 0;
-        random_geometry(rng, &q, &sigma_t, &I0);
-        const double albedo = 0.05 + 0.95 * unit(rng);
-        q.gpu[0] = kRadiance;
-        q.gpu[1] = static_cast<float>(albedo * sigma_t);
-        q.gpu[2] = static_cast<float>((1.0 - albedo) * sigma_t);
-        q.gpu[3] = static_cast<float>(I0);
+        Query q = random_radiance_query(rng);
         q.reference = table.radiance(cpp_query(&q.gpu[1]));
         q.label = "radiance";
         out.push_back(q);

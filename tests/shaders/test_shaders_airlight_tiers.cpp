@@ -90,17 +90,7 @@ std::vector<TierQuery> make_queries() {
         t.optical_distance = (cq.sigma_s_per_m + cq.sigma_a_per_m) * cq.distance_m;
         out.push_back(t);
     };
-    for (int i = 0; i < 3000; ++i) { // airlight_gpu_test::random_geometry: every regime
-        Query q;
-        double sigma_t = 0, I0 = 0;
-        random_geometry(rng, &q, &sigma_t, &I0);
-        const double albedo = 0.05 + 0.95 * unit(rng);
-        q.gpu[0] = kRadiance;
-        q.gpu[1] = static_cast<float>(albedo * sigma_t);
-        q.gpu[2] = static_cast<float>((1.0 - albedo) * sigma_t);
-        q.gpu[3] = static_cast<float>(I0);
-        add(q);
-    }
+    for (int i = 0; i < 3000; ++i) add(random_radiance_query(rng)); // random_geometry's: every regime
     // Degenerate inputs: zero radiance, γ = 0 short of and through the light, γ = π
     // (airlight_gpu_test), s → 0, σ → 0, u far beyond any table, grazing far ends (sin γ and
     // cos γ a consistent pair wherever the radiance is not 0: the snippet takes both as given,
