@@ -50,7 +50,9 @@ void note_non_finite(nlohmann::json &out) {
 // channel); with arrays, every answer field is an array of 3. phase_g = 0 with numbers is
 // exactly the isotropic answer of the kind (the same code).
 
-bool is_medium_quantity(const std::string &quantity) { return quantity == "airlight" || quantity == "near_light"; }
+bool is_medium_quantity(const std::string &quantity) {
+    return quantity == "airlight" || quantity == "near_light" || quantity == "spot_airlight";
+}
 
 // The query's phase_g (0 when absent); std::invalid_argument when not a number or out of range.
 double eval_phase_g(const nlohmann::json &q) {
@@ -113,7 +115,8 @@ nlohmann::json channel_answer(const RuntimeKind &kind, const std::string &quanti
     q["sigma_a"] = sigma_a;
     q.erase("phase_g");
     nlohmann::json out = nlohmann::json::object();
-    if (phase_g == 0.0) kind.answer_eval(quantity, q, out, tables);
+    if (quantity == "spot_airlight") answer_spot_airlight(q, phase_g, out, tables);
+    else if (phase_g == 0.0) kind.answer_eval(quantity, q, out, tables);
     else if (quantity == "airlight") answer_airlight_phase(q, phase_g, out, tables);
     else answer_near_light_phase(q, phase_g, out, tables);
     note_non_finite(out);
@@ -251,7 +254,7 @@ nlohmann::json eval_query(const nlohmann::json &query, const EvalTables &tables)
     if (!answering) throw std::invalid_argument("unknown quantity \"" + quantity + "\" (expected " + list + ")");
     if (!is_medium_quantity(quantity)) {
         if (query.contains("phase_g"))
-            throw std::invalid_argument("field \"phase_g\" applies to airlight and near_light queries only");
+            throw std::invalid_argument("field \"phase_g\" applies to airlight, spot_airlight and near_light queries only");
         answering->answer_eval(quantity, query, out, tables);
         note_non_finite(out);
         return out;

@@ -37,6 +37,10 @@ void eval_put(nlohmann::json &out, const char *name, double value);
 // optional). Throws std::invalid_argument naming the field that is missing or not a number.
 AirlightQuery eval_airlight_query(const nlohmann::json &q);
 NearLightQuery eval_near_light_query(const nlohmann::json &q);
+// A "spot_airlight" line of one channel (σ as numbers; phase_g given apart): "exact"
+// (scatterlut/spot.hpp) and "table" from a loaded airlight table of that g, else null; a ray
+// through the lit apex answers null with a note (kinds/airlight_runtime.cpp).
+void answer_spot_airlight(const nlohmann::json &q, double phase_g, nlohmann::json &out, const EvalTables &tables);
 
 // Answers one parsed query: the query's fields plus the answer fields. Throws
 // std::invalid_argument with a message for a malformed query.

@@ -12,6 +12,7 @@
 #include "kinds/runtime_kind.hpp"
 #include "scatterlut/airlight.hpp"
 #include "scatterlut/airlight_hg.hpp"
+#include "scatterlut/spot.hpp"
 
 extern "C" {
 #include "slut_airlight.h"
@@ -52,11 +53,50 @@ void answer_airlight(const nlohmann::json &q, nlohmann::json &out, const EvalTab
     else out["table"] = nullptr;
 }
 
+// A "spot_airlight" line's query: σ, I0, the ray (viewer, view_dir, length) and the spot
+// (light_pos, spot_dir, outer_angle, inner_angle defaulting to outer_angle; angles in rad).
+SpotQuery eval_spot_query(const nlohmann::json &q) {
+    SpotQuery s;
+    s.sigma_s_per_m = eval_number_field(q, "sigma_s");
+    s.sigma_a_per_m = eval_number_field(q, "sigma_a");
+    s.light.intensity_W_per_sr = eval_number_field(q, "intensity");
+    eval_vector_field(q, "viewer", s.viewer_m.data());
+    eval_vector_field(q, "view_dir", s.view_dir.data());
+    s.length_m = eval_number_field(q, "length");
+    eval_vector_field(q, "light_pos", s.light.position_m.data());
+    eval_vector_field(q, "spot_dir", s.light.direction.data());
+    s.light.outer_angle_rad = eval_number_field(q, "outer_angle");
+    s.light.inner_angle_rad = q.contains("inner_angle") ? eval_number_field(q, "inner_angle") : s.light.outer_angle_rad;
+    return s;
+}
+
 } // namespace
+
+void answer_spot_airlight(const nlohmann::json &q, double phase_g, nlohmann::json &out, const EvalTables &tables) {
+    const SpotQuery s = eval_spot_query(q);
+    const double exact = spot_airlight_radiance_exact(s, phase_g); // validates the query
+    eval_put(out, "exact", exact);
+    if (exact == HUGE_VAL) out["note"] = "diverges: the view ray passes through the light where the beam is lit";
+    // The airlight tables cover every u and w (asymptotic forms beyond their axes): any table of the query's g.
+    if (phase_g == 0.0) {
+        if (const AirlightTable *table = airlight_table(tables)) eval_put(out, "table", spot_airlight_radiance(*table, s));
+        else out["table"] = nullptr;
+        return;
+    }
+    const AirlightHgTable *table =
+        first_runtime<AirlightHgTable>(tables.samplers, [&](const AirlightHgTable &t) { return t.serves(phase_g); });
+    if (table) eval_put(out, "table", spot_airlight_radiance(*table, s));
+    else out["table"] = nullptr;
+}
 
 const RuntimeKind &airlight_runtime_kind(bool anisotropic) {
     static const RuntimeKindOf<AirlightTable> isotropic_kind(kKindAirlightF,
-                                                             {{"F", answer_F}, {"airlight", answer_airlight}});
+                                                             {{"F", answer_F},
+                                                              {"airlight", answer_airlight},
+                                                              {"spot_airlight", [](const nlohmann::json &q, nlohmann::json &out,
+                                                                                   const EvalTables &tables) {
+                                                                   answer_spot_airlight(q, 0.0, out, tables);
+                                                               }}});
     static const RuntimeKindOf<AirlightHgTable> anisotropic_kind(kKindAirlightFg);
     if (anisotropic) return anisotropic_kind;
     return isotropic_kind;
