@@ -7,6 +7,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <set>
+#include <optional>
 #include <sstream>
 
 #include <toml++/toml.h>
@@ -253,13 +254,41 @@ SceneMedium read_medium(const Reader &rd, const toml::table &t, const std::strin
     return m;
 }
 
+// A spot's cone (docs/SPOT.md): direction = [x, y, z] (non-zero; light → lit points),
+// outer_angle_deg in [0, 180], inner_angle_deg in [0, outer] (default: the outer, a hard cone).
+void read_spot_cone(const Reader &rd, const toml::table &t, const std::string &path, SceneLight &l) {
+    const std::string key = Reader::join(path, "direction");
+    const toml::node *n = t.get("direction");
+    if (!n) rd.fail(t.source(), key, "expected [x, y, z], the spot's axis (missing)");
+    const toml::array *a = n->as_array();
+    if (!a || a->size() != 3) rd.fail(n->source(), key, "expected [x, y, z], the spot's axis");
+    double length2 = 0;
+    for (size_t i = 0; i < 3; ++i) {
+        const std::optional<double> v = a->get(i)->value<double>();
+        if (!v || !std::isfinite(*v)) rd.fail(a->get(i)->source(), key + "[" + std::to_string(i) + "]", "expected a finite number");
+        l.spot_direction[i] = *v;
+        length2 += *v * *v;
+    }
+    if (!(length2 > 0.0)) rd.fail(n->source(), key, "expected a non-zero vector");
+    l.outer_angle_deg = rd.number(t, "outer_angle_deg", path, true, 0, 0.0, false, 180.0, "a number in [0, 180] (degrees)");
+    l.inner_angle_deg = rd.number(t, "inner_angle_deg", path, false, l.outer_angle_deg, 0.0, false, l.outer_angle_deg,
+                                  "a number in [0, outer_angle_deg] (degrees)");
+}
+
 SceneLight read_light(const Reader &rd, const toml::table &t, const std::string &path) {
     SceneLight l;
     l.line = static_cast<int>(t.source().begin.line);
-    const std::string type = rd.string(t, "type", path, true, "", {"point", "directional"});
-    l.type = type == "point" ? LightType::Point : LightType::Directional;
-    if (l.type == LightType::Point) {
+    const std::string type = rd.string(t, "type", path, true, "", {"point", "spot", "directional"});
+    l.type = type == "directional" ? LightType::Directional : LightType::Point;
+    l.spot = type == "spot";
+    if (l.spot) {
+        rd.only_keys(t, path, {"name", "type", "intensity_W_per_sr", "distance_m", "media", "direction",
+                               "outer_angle_deg", "inner_angle_deg"});
+        read_spot_cone(rd, t, path, l);
+    } else if (l.type == LightType::Point) {
         rd.only_keys(t, path, {"name", "type", "intensity_W_per_sr", "distance_m", "media"});
+    }
+    if (l.type == LightType::Point) {
         l.intensity_W_per_sr =
             rd.number(t, "intensity_W_per_sr", path, true, 0, 0.0, true, kSceneMaxIntensity, "a number in (0, 1e30] (W/sr)");
         const toml::node *d = t.get("distance_m");

@@ -103,6 +103,12 @@ struct SceneLight {
     Range distance_m;               // point lights: viewer–light (viewer inside) or surface point–light (outside)
     double irradiance_W_per_m2 = 0; // directional lights (informative; radiance scales with it)
     std::vector<std::string> media; // the media it lights; empty in the file = all media
+    // Spot lights (type = "spot"): a point light (type Point: the planner serves it with the
+    // airlight tables exactly as a point light, the same demand) with glTF's cone
+    // (docs/SPOT.md): the axis, light → lit points, and the half-angles in degrees.
+    bool spot = false;
+    std::array<double, 3> spot_direction{0, 0, -1};
+    double outer_angle_deg = 180, inner_angle_deg = 180;
     int line = 0;
 };
 
