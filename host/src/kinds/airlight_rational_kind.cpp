@@ -74,8 +74,9 @@ public:
     }
 
     const char *target_reason() const override {
-        return "the radiance error over 2G - 1 = 15 (G = SLUT_AIRLIGHT_RATIONAL_GAIN): the most the two-sample "
-               "difference amplifies the samples' relative errors where it is used";
+        return "the radiance error over 15: the GPU tiers take the difference of the two ends' samples only where "
+               "the far term is at most 7/8 of the viewer's, which amplifies the samples' relative errors at most 15 "
+               "times";
     }
 
     std::vector<int> counts(const std::any &plan) const override { return {plan_of(plan).n_m, plan_of(plan).n_t}; }
@@ -108,11 +109,12 @@ public:
         return "Boost.Math Gauss-Kronrod 61 of H(u,t) over y; Boost.Math expint on the edge x_t = 1";
     }
     std::string methods_note() const override {
-        return " The airlight_rational table is the airlight snippets' tiers' (SLUT_TIER_FAST: one hardware-filtered "
-               "fetch per end of the ray; SLUT_TIER_ACCURATE: the bilinear from four texel fetches): no exp or log "
-               "beyond the attenuations. AirlightRationalTable::radiance is their path in double (kernels/"
-               "slut_airlight_rational.h: the two ends' terms' difference, with at most 2G - 1 = 15 times the samples' "
-               "relative error, or the short segment's corrected trapezoid where that would cancel). Stored as f16 the "
+        return " The airlight_rational table is what the GPU snippets' tiers sample (docs/SHADERS.md, \"Tiers\": the "
+               "fast tier with one hardware-filtered fetch per end of the ray, the accurate one with the bilinear from "
+               "four texel fetches), with no exp or log beyond the attenuations. The table method here is their "
+               "arithmetic in double: the difference of the two ends' terms (Sun et al. 2005's tail at each end), with "
+               "at most 15 times the samples' relative error, or the short segment's corrected trapezoid rule where "
+               "that difference would cancel. Stored as f16 the "
                "table's values (0.80 to 1.29) round by up to 2^-11 = 4.9e-4 of themselves: a floor under the f16 "
                "rungs' errors that the f32 table lies far below.";
     }
