@@ -18,7 +18,7 @@
  *
  * A third compiler: the headers the GPU snippets list (SLUT_SHADER_HEADERS in the top-level
  * CMakeLists.txt: slut_axes.h, slut_airlight.h and its parts, the near-light parts but the
- * sweep, slut_phase.h and slut_airlight_hg.h) are
+ * sweep, slut_phase.h and slut_airlight_hg.h and its parts) are
  * compiled once more, whole, as GLSL, GLSL ES 3.00 and HLSL in float, for the GPU sampling snippets
  * (cmake/assemble_shaders.cmake; the SLUT_SHADER branch below, the float math of
  * tables/shaders/src/common.slsl and the per-language preludes). Code the snippets
