@@ -1,7 +1,7 @@
 // scatterlut runtime (internal) — four doubles at a time: AVX2 + FMA vectors and glibc's
 // libmvec for their exp, expm1, log, atan, sin, cos and tan.
 //
-// Why: a radiance call's cost is its transcendentals (tables/src/airlight.cpp); several of
+// Why: a radiance call's cost is its transcendentals (tables/src/airlight_avx2.cpp); several of
 // them are independent (the six nodes of the one-panel θ-rule; the same step of four queries
 // in a batch), and libmvec evaluates four in about the time of one scalar call. libmvec is
 // glibc's vector math library (the functions GCC calls for `#pragma omp simd` loops under

@@ -19,7 +19,8 @@ set(objects "")
 include("${SOURCE_DIR}/tables/io_sources.cmake") # the codecs of the runtime library (built without OpenEXR here)
 set(slut_io_sources ${SLUT_TABLE_IO_SOURCES} ${SLUT_TABLE_IO_NO_EXR_SOURCES})
 list(TRANSFORM slut_io_sources PREPEND tables/src/)
-foreach(s tables/src/table tables/src/sampler tables/src/airlight tables/src/nearlight tables/src/anisotropic
+foreach(s tables/src/table tables/src/sampler tables/src/airlight tables/src/airlight_query tables/src/airlight_avx2
+          tables/src/airlight_avx512 tables/src/airlight_batch tables/src/nearlight tables/src/anisotropic
           tables/src/airlight_hg tables/src/nearlight_hg tables/src/surface tables/src/surface_table
           tables/src/airlight_rational ${slut_io_sources}
           host/src/eval host/src/json_guard host/src/scene host/src/kinds/runtime_registry

@@ -1,4 +1,4 @@
-// The airlight runtime (tables/src/airlight.cpp): the radiance assembly from geometry and
+// The airlight runtime (tables/src/airlight*.cpp): the radiance assembly from geometry and
 // the table sampler (scalar, float path, batch), against the exact radiance and the
 // Boost.Math quadrature of tests/airlight_reference.hpp.
 #include <cmath>
@@ -394,7 +394,7 @@ TEST(AirlightTable, BatchChecksEveryQueryBeforeWriting) {
 }
 
 // The batch checks its queries' fields as one flat array of doubles, two queries per step
-// (airlight.cpp, every_field_in_range): it must refuse exactly what the scalar check refuses,
+// (airlight_batch.cpp, every_field_in_range): it must refuse exactly what the scalar check refuses,
 // for each field at each position (both halves of a step and an odd last query), at the edges
 // of each range: a bad value named by its query's index, nothing written; a good one passes.
 TEST(AirlightTable, BatchCheckAgreesWithTheScalarCheckPerField) {
@@ -451,7 +451,7 @@ TEST(AirlightTable, ExactAxisWithStrongAttenuationDoesNotUnderflow) {
     }
 }
 
-// The scalar radiance's AVX2 + FMA path (where the CPU has them; airlight.cpp,
+// The scalar radiance's AVX2 + FMA path (where the CPU has them; airlight_avx2.cpp,
 // AirlightScalar4) against the portable path it replaces, per query, on both tables
 // (the f64 one takes the portable two-sample path, the f32 one the vector one): the same
 // formulas with libmvec's exp, log and atan (≤ 4 ulp) in place of libm's and FMA

@@ -104,8 +104,8 @@ public:
     double w_min() const { return w_min_; }
 
 private:
-    friend struct AirlightBatch;   // the batch radiance (airlight.cpp)
-    friend struct AirlightScalar4; // the scalar radiance where the CPU has AVX2 and FMA (airlight.cpp)
+    friend struct AirlightBatch;   // the batch radiance (airlight_batch.cpp)
+    friend struct AirlightScalar4; // the scalar radiance where the CPU has AVX2 and FMA (airlight_avx2.cpp)
     friend double detail::airlight_radiance_portable(const AirlightTable &table, const AirlightQuery &q);
     friend double detail::airlight_radiance_four_lanes(const AirlightTable &table, const AirlightQuery &q);
     // radiance() without the AVX2 + FMA path: libm and the kernels' functions alone (CPUs
@@ -118,7 +118,7 @@ private:
     double radiance_general(const AirlightQuery &q) const;
     double one_panel_radiance(const slut_airlight_geometry &g) const;
     double two_sample_radiance(const slut_airlight_geometry &g) const;
-    double ln_gs_at(int cell_u, double frac_u, double unit_w) const; // ln G̃ from values32_
+    double ln_gs_at(int cell_u, double frac_u, double unit_w) const; // ln G̃ from values32_ (airlight_lookup.hpp)
     Table table_;
     SamplerCache cache_; // of table_
     std::vector<float> values32_; // table_.values as floats when exact (sample_encoded_at_unit)
