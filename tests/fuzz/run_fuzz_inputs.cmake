@@ -22,7 +22,7 @@ list(TRANSFORM slut_io_sources PREPEND tables/src/)
 foreach(s tables/src/table tables/src/sampler tables/src/airlight tables/src/airlight_query tables/src/airlight_avx2
           tables/src/airlight_avx512 tables/src/airlight_batch tables/src/nearlight tables/src/anisotropic
           tables/src/airlight_hg tables/src/nearlight_hg tables/src/surface tables/src/surface_table
-          tables/src/airlight_rational ${slut_io_sources}
+          tables/src/airlight_rational tables/src/spot tables/src/spot_table ${slut_io_sources}
           host/src/eval host/src/json_guard host/src/scene host/src/kinds/runtime_registry
           host/src/kinds/airlight_runtime host/src/kinds/nearlight_runtime
           host/src/kinds/surface_runtime host/src/kinds/airlight_rational_runtime)
