@@ -14,14 +14,15 @@ CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSCATTERLUT_REQUIRE_ALL_TESTS=
 # libOpenGL), clang's libFuzzer, mpmath for the reference-value script, and node with npm
 # for the engine-loader tests and the web demo (three.js and puppeteer-core from npm, pinned
 # in tests/js/ and examples/web/package-lock.json; an npm that came with another nodejs
-# build, such as NodeSource's, counts as installed), and Chromium for the browser test.
+# build, such as NodeSource's, counts as installed), Chromium for the browser tests (WebGL2 and
+# WebGPU), and pycparser for the WGSL translator (tables/shaders/wgsl/slut_wgsl.py).
 DEB_PACKAGES := cmake g++ make pkg-config python3 python3-mpmath \
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo \
   libopenexr-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev \
   libboost-math-dev libgtest-dev libbenchmark-dev \
   glslang-tools spirv-cross libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri \
   clang libclang-rt-14-dev zlib1g-dev \
-  nodejs npm chromium
+  nodejs npm chromium python3-pycparser
 
 .PHONY: all run test deps js-deps configure build clean
 

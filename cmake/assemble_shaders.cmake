@@ -7,7 +7,7 @@
 # GLSL/HLSL in float through kernels/slut_compat.h's SLUT_SHADER branch — whole headers,
 # less their `#ifndef SLUT_SHADER` blocks. Their block comments are dropped (the derivations
 # stay in the headers; the snippets stay ASCII).
-# Usage: cmake -DLANG=glsl|hlsl|essl -DNAME=airlight -DSRC_DIR=tables/shaders/src
+# Usage: cmake -DLANG=glsl|hlsl|essl|wgsl -DNAME=airlight -DSRC_DIR=tables/shaders/src
 #              -DKERNELS_DIR=kernels
 #              -DHEADERS="slut_compat.h|slut_axes.h|slut_airlight.h|slut_nearlight_closed.h|..."
 #              -DOUT=file [-DBASE=nearlight] -P assemble_shaders.cmake
@@ -27,8 +27,16 @@ elseif(LANG STREQUAL "hlsl")
   set(lang_name "HLSL")
 elseif(LANG STREQUAL "essl")
   set(lang_name "GLSL ES 3.00 (WebGL2)")
+elseif(LANG STREQUAL "wgsl")
+  # Not a snippet itself: the input of tables/shaders/wgsl/slut_wgsl.py, which preprocesses it
+  # (with a tier's define) and translates it to WGSL. Its prelude is C-preprocessor glue.
+  set(lang_name "WGSL (translator input)")
 else()
-  message(FATAL_ERROR "assemble_shaders.cmake: LANG must be glsl, hlsl or essl, not '${LANG}'")
+  message(FATAL_ERROR "assemble_shaders.cmake: LANG must be glsl, hlsl, essl or wgsl, not '${LANG}'")
+endif()
+set(prelude_file "prelude.${LANG}")
+if(LANG STREQUAL "wgsl")
+  set(prelude_file "prelude.wgsl.h")
 endif()
 
 # Text of `file` without its /* ... */ comments, blank-line runs collapsed.
@@ -146,7 +154,7 @@ if(unknown)
                       "does not map for the GPU: add it there (and its float version to tables/shaders/src/common.slsl)")
 endif()
 
-file(READ "${SRC_DIR}/prelude.${LANG}" prelude)
+file(READ "${SRC_DIR}/${prelude_file}" prelude)
 file(READ "${SRC_DIR}/common.slsl" common)
 # No switch statement in what the GPU compiles: SwiftShader (Chromium's WebGL2 without a GPU)
 # took minutes of CPU to build a shader that inlines a switch several times (the warp switch,
@@ -188,7 +196,7 @@ string(REPLACE "@LANG@" "${lang_name}" doc "${doc}")
 string(TOUPPER "SCATTERLUT_${NAME}_${LANG}" guard)
 
 set(out "// GENERATED at build time by cmake/assemble_shaders.cmake -- do not edit. Sources:
-// tables/shaders/src/${NAME}.slsl (this snippet), prelude.${LANG} (${lang_name} glue),
+// tables/shaders/src/${NAME}.slsl (this snippet), ${prelude_file} (${lang_name} glue),
 // common.slsl (float math), and ${header_list}
 // (the code the generator and the C++ runtime compile, here in float).
 //
