@@ -196,10 +196,10 @@ SLUT_FLOAT3 test_vec(int b) { return SLUT_FLOAT3(q[b], q[b + 1], q[b + 2]); }
     SLUT_FLOAT3 n = test_vec(b + 5); SLUT_FLOAT3 e = test_vec(b + 8); SLUT_FLOAT3 l = test_vec(b + 11); \
     bool fresnel = q[b + 16] != 0.0
 )slsl";
+// The fields of the parameters (GLSL; struct Params below holds them, std140).
+inline const char *kParamsDecl = "    vec4 axis_f[4]; ivec4 axis_i[4]; int layers; int n_queries; float phase_g;";
 inline std::string glsl_compute_source(const std::string &snippet, const std::string &body, const std::string &defines) {
-    return gpu_harness::glsl_compute_source(
-        snippet, "    vec4 axis_f[4]; ivec4 axis_i[4]; int layers; int n_queries; float phase_g;", kTestAxis + body,
-        defines, true);
+    return gpu_harness::glsl_compute_source(snippet, kParamsDecl, kTestAxis + body, defines, true);
 }
 inline std::string hlsl_compute_source(const std::string &snippet, const std::string &body, const std::string &defines) {
     return gpu_harness::hlsl_compute_source(
@@ -207,20 +207,18 @@ inline std::string hlsl_compute_source(const std::string &snippet, const std::st
         defines, true);
 }
 
-#if SLUT_HAVE_EGL
-// Every query through a compute shader built by the functions above (or its spirv-cross
-// translation) on texture t, with the table's axes and layers, and phase_g, as parameters.
-inline std::vector<float> run_queries(const std::string &source, const Texture &t, const std::vector<Query> &qs,
-                                      double phase_g, std::string *error) {
-    std::vector<float> packed;
-    for (const Query &q : qs) packed.insert(packed.end(), q.gpu.begin(), q.gpu.end());
-    struct Params {
-        float axis_f[4][4];
-        int32_t axis_i[4][4];
-        int32_t layers, n_queries;
-        float phase_g;
-        int32_t pad;
-    } params{};
+// The uniform block of the wrappers above (std140): per axis (min, max, scale, -) and (warp,
+// count, -, -), the number of layers, the query count, phase_g.
+struct Params {
+    float axis_f[4][4];
+    int32_t axis_i[4][4];
+    int32_t layers, n_queries;
+    float phase_g;
+    int32_t pad;
+};
+
+inline Params make_params(const Texture &t, size_t n_queries, double phase_g) {
+    Params params{};
     for (size_t a = 0; a < t.rounded.axes.size(); ++a) {
         const slut_axis &m = t.rounded.axes[a].map;
         params.axis_f[a][0] = static_cast<float>(m.min);
@@ -230,12 +228,45 @@ inline std::vector<float> run_queries(const std::string &source, const Texture &
         params.axis_i[a][1] = m.count;
     }
     params.layers = t.layers();
-    params.n_queries = static_cast<int32_t>(qs.size());
+    params.n_queries = static_cast<int32_t>(n_queries);
     params.phase_g = static_cast<float>(phase_g);
+    return params;
+}
+
+#if SLUT_HAVE_EGL
+// Every query through a compute shader built by the functions above (or its spirv-cross
+// translation) on texture t, with the table's axes and layers, and phase_g, as parameters.
+inline std::vector<float> run_queries(const std::string &source, const Texture &t, const std::vector<Query> &qs,
+                                      double phase_g, std::string *error) {
+    std::vector<float> packed;
+    for (const Query &q : qs) packed.insert(packed.end(), q.gpu.begin(), q.gpu.end());
+    const Params params = make_params(t, qs.size(), phase_g);
     const auto &ax = t.rounded.axes;
     return run_compute(source, t.texels, ax[0].map.count, ax[1].map.count * t.layers(), ax[2].map.count, packed,
                        qs.size(), &params, sizeof params, error);
 }
 #endif
+
+// The hardware filter's extra error on one table (the fast tier; test_shaders_nearlight.cpp
+// derives it): per filtered axis the largest |d ln E| between neighbouring texels (layer seams
+// included) times (weight error + 2^-24 texels), times 1.5.
+inline double hardware_filter_extra(const Texture &t, double weight_error) {
+    const auto &ax = t.rounded.axes;
+    const size_t n[3] = {static_cast<size_t>(ax[0].map.count), static_cast<size_t>(ax[1].map.count) * t.layers(),
+                         static_cast<size_t>(ax[2].map.count)};
+    const size_t stride[3] = {1, n[0], n[0] * n[1]};
+    double jump[3] = {0, 0, 0};
+    for (size_t k = 0; k < n[2]; ++k)
+        for (size_t j = 0; j < n[1]; ++j)
+            for (size_t i = 0; i < n[0]; ++i) {
+                const size_t at = (k * n[1] + j) * n[0] + i, idx[3] = {i, j, k};
+                for (int a = 0; a < 3; ++a)
+                    if (idx[a] + 1 < n[a])
+                        jump[a] = std::max(jump[a], double{std::fabs(t.texels[at + stride[a]] - t.texels[at])});
+            }
+    double extra = 0;
+    for (int a = 0; a < 3; ++a) extra += jump[a] * (weight_error + std::ldexp(static_cast<double>(n[a]), -24));
+    return 1.5 * extra;
+}
 
 } // namespace nearlight_gpu_test

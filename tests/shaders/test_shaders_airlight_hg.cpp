@@ -40,6 +40,7 @@ extern "C" {
 }
 
 #include "airlight_gpu_test.hpp"
+#include "wgsl_cases.hpp"
 
 #include "airlight_hg_gpu_queries.hpp"
 
@@ -163,26 +164,37 @@ constexpr double kTexelRounding = 1e-5;
 // float rounding of phase_g itself near the forward peak, d ln psi/dg = 1/(1 + g) + 2/(1 - g)
 // = 200 at g = 0.99 times |float(0.99) - 0.99| = 9.5e-9: 1.9e-6 (measured 2.05e-6, at gamma = 0).
 
+// The uniform block of kParams (std140) for the table of g.
+struct Params {
+    float u_max, u_scale;
+    int32_t u_count;
+    float w_min;
+    int32_t w_count, n_queries;
+    float phase_g, w_scale;
+    int32_t w_warp, pad[3];
+};
+Params test_params(double g) {
+    const slut_axis &w = table_for(g).table().axes[1].map;
+    return Params{static_cast<float>(kUMax), static_cast<float>(kUScale), kCountU, static_cast<float>(kWMin),
+                  kCountW, static_cast<int32_t>(queries(g).size()), static_cast<float>(g), static_cast<float>(w.scale),
+                  w.warp, {0, 0, 0}};
+}
+
 #if SLUT_HAVE_EGL
 std::vector<float> run_on_gpu(const std::string &source, double g, std::string *error) {
-    const scatterlut::Table &table = table_for(g).table();
-    const slut_axis &w = table.axes[1].map;
-    struct Params {
-        float u_max, u_scale;
-        int32_t u_count;
-        float w_min;
-        int32_t w_count, n_queries;
-        float phase_g, w_scale;
-        int32_t w_warp, pad[3];
-    } params{static_cast<float>(kUMax), static_cast<float>(kUScale), kCountU, static_cast<float>(kWMin),
-             kCountW, static_cast<int32_t>(queries(g).size()), static_cast<float>(g), static_cast<float>(w.scale),
-             w.warp, {0, 0, 0}};
-    return run_queries(source, table, queries(g), params, error);
+    return run_queries(source, table_for(g).table(), queries(g), test_params(g), error);
 }
 #endif
 
-// filter_weight_error: the fast tier's (SLUT_TIER_FAST: the hardware filter), which moves the
-// filtered ln G~_g by that error times the cell's jump (twice that on the radiance: two samples).
+// A query's tolerance (its label's, above); filter_weight_error: the fast tier's (SLUT_TIER_FAST:
+// the hardware filter), which moves the filtered ln G~_g by that error times the cell's jump
+// (twice that on the radiance: two samples).
+double tolerance_of(const Query &q, double filter_weight_error = 0.0) {
+    return q.label == "Gs" ? kTolGs + (kTexelRounding + filter_weight_error) * q.cell_jump + q.own_tolerance
+                           : kTolRadiance + kTolPerOpticalDistance * q.optical_distance +
+                                 2.0 * (kTexelRounding + filter_weight_error) * q.cell_jump;
+}
+
 void expect_agreement(const std::vector<float> &got, double g, const std::string &run, ::testing::Test *test,
                       double filter_weight_error = 0.0) {
     const std::vector<Query> &qs = queries(g);
@@ -194,11 +206,7 @@ void expect_agreement(const std::vector<float> &got, double g, const std::string
         for (size_t i = 0; i < qs.size(); ++i)
             if (qs[i].label == label) indices.push_back(i);
         if (indices.empty()) continue; // kPeakOnlyG: G~_g only
-        const auto tolerance = [&](size_t i) {
-            return label == "Gs" ? kTolGs + (kTexelRounding + filter_weight_error) * qs[i].cell_jump + qs[i].own_tolerance
-                                 : kTolRadiance + kTolPerOpticalDistance * qs[i].optical_distance +
-                                       2.0 * (kTexelRounding + filter_weight_error) * qs[i].cell_jump;
-        };
+        const auto tolerance = [&](size_t i) { return tolerance_of(qs[i], filter_weight_error); };
         const Stats st = error_stats(got, reference, indices, tolerance);
         double jump = 0;
         for (size_t i : indices) jump = std::max(jump, qs[i].cell_jump);
@@ -360,3 +368,48 @@ TEST_F(GpuAirlightHg, HlslMatchesTheCppSamplerAndTheExactRadiance) {
     }
 #endif
 }
+
+// ------------------------------------------------------------------ the WebGPU test's cases
+// (tests/shaders/wgsl_cases.hpp; ctest WebGPUSnippets runs the WGSL snippets on them): per g every
+// query above, no tier and the accurate tier at the tolerances above, the fast tier with the
+// filter's weight error as GlslFastTierMatchesTheCppSampler takes it (tolerance_of).
+namespace {
+
+std::vector<wgsl_cases::CaseSet> write_wgsl_cases() {
+    std::vector<wgsl_cases::CaseSet> sets;
+    for (double g : all_phase_gs()) {
+        const scatterlut::Table &t = table_for(g).table();
+        const std::vector<Query> &qs = queries(g);
+        wgsl_cases::CaseSet c;
+        char name[48];
+        std::snprintf(name, sizeof name, "airlight_hg g=%g", g);
+        c.name = name;
+        c.snippet = "airlight_hg";
+        c.width = t.axes[0].map.count;
+        c.height = t.axes[1].map.count;
+        c.texels.assign(t.values.begin(), t.values.end());
+        c.params_decl = kParams;
+        c.params = wgsl_cases::bytes_of(test_params(g));
+        c.body = kTestBody;
+        c.query_floats = kQueryFloats;
+        wgsl_cases::Tier none, accurate, fast;
+        accurate.name = "accurate";
+        fast.name = "fast";
+        for (const Query &q : qs) {
+            c.queries.insert(c.queries.end(), q.gpu.begin(), q.gpu.end());
+            c.labels.push_back(q.label);
+            c.reference.push_back(q.reference);
+            none.tol.push_back(tolerance_of(q));
+            accurate.tol.push_back(tolerance_of(q));
+            fast.tol.push_back(tolerance_of(q));
+            fast.tol_per_weight_error.push_back(tolerance_of(q, 1.0) - tolerance_of(q));
+        }
+        c.tiers = {none, accurate, fast};
+        sets.push_back(c);
+    }
+    return sets;
+}
+
+} // namespace
+
+SLUT_WGSL_CASES(write_wgsl_cases);

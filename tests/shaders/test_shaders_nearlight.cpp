@@ -33,6 +33,7 @@
 
 #include "nearlight_gpu_test.hpp"
 #include "scatterlut/io.hpp"
+#include "wgsl_cases.hpp"
 #include "scatterlut/nearlight.hpp"
 #include "scatterlut/table.hpp"
 
@@ -302,29 +303,16 @@ float4 main(float3 world_pos : TEXCOORD0, float3 eye_pos : TEXCOORD1, float3 nor
 constexpr double kTolE = 1e-5, kTolPerLnE = 2e-7, kTolRadiance = 1e-5, kTolClosedForm = 1e-5,
                  kTolPerConditioning = 2e-7;
 
-// The hardware filter's extra error on one table (see the tolerances above): per filtered
-// axis the largest |Δ ln E| between neighbouring texels (layer seams included) times
-// (weight error + 2^-24·texels).
-double hardware_filter_extra(const GpuTable &t, double weight_error) {
-    const auto &ax = t.rounded.axes;
-    const size_t n[3] = {static_cast<size_t>(ax[0].map.count), static_cast<size_t>(ax[1].map.count) * t.layers(),
-                         static_cast<size_t>(ax[2].map.count)};
-    const size_t stride[3] = {1, n[0], n[0] * n[1]};
-    double jump[3] = {0, 0, 0};
-    for (size_t k = 0; k < n[2]; ++k)
-        for (size_t j = 0; j < n[1]; ++j)
-            for (size_t i = 0; i < n[0]; ++i) {
-                const size_t at = (k * n[1] + j) * n[0] + i, idx[3] = {i, j, k};
-                // Across a layer seam too: at the last g of a layer the position sits on a
-                // texel centre, and the filter's position error (below) reaches into the
-                // next layer's first row.
-                for (int a = 0; a < 3; ++a)
-                    if (idx[a] + 1 < n[a])
-                        jump[a] = std::max(jump[a], double{std::fabs(t.texels[at + stride[a]] - t.texels[at])});
-            }
-    double extra = 0;
-    for (int a = 0; a < 3; ++a) extra += jump[a] * (weight_error + std::ldexp(static_cast<double>(n[a]), -24));
-    return 1.5 * extra;
+// The hardware filter's extra error on one table: nearlight_gpu_test::hardware_filter_extra (see
+// the tolerances above).
+
+// A query's tolerance (its label's), filter_extra added where the table is sampled.
+double tolerance_of(const Query &q, double filter_extra) {
+    const double ln_e = std::fabs(q.ln_E);
+    const double geometry = kTolPerConditioning * q.conditioning;
+    if (q.label == "thin" || q.label == "distant") return kTolClosedForm + geometry;
+    if (q.label == "radiance") return kTolRadiance + geometry + kTolE + kTolPerLnE * ln_e + filter_extra;
+    return kTolE + kTolPerLnE * ln_e + filter_extra;
 }
 
 void expect_agreement(const std::vector<float> &got, bool thick, const std::string &run, double filter_extra,
@@ -336,14 +324,7 @@ void expect_agreement(const std::vector<float> &got, bool thick, const std::stri
         for (size_t i = 0; i < r.queries.size(); ++i)
             if (r.queries[i].label == label) idx.push_back(i);
         if (idx.empty()) continue;
-        const auto tolerance = [&](size_t i) {
-            const Query &q = r.queries[i];
-            const double ln_e = std::fabs(q.ln_E);
-            const double geometry = kTolPerConditioning * q.conditioning;
-            if (label == "thin" || label == "distant") return kTolClosedForm + geometry;
-            if (label == "radiance") return kTolRadiance + geometry + kTolE + kTolPerLnE * ln_e + filter_extra;
-            return kTolE + kTolPerLnE * ln_e + filter_extra;
-        };
+        const auto tolerance = [&](size_t i) { return tolerance_of(r.queries[i], filter_extra); };
         const Stats st = error_stats(got, r.reference, idx, tolerance);
         std::printf("[ %s %s ] %-9s n=%zu  max %.3g  p99 %.3g  median %.3g  (worst: gpu %.9g, C++ %.9g)  "
                     "max error/tolerance %.2f\n",
@@ -513,3 +494,51 @@ TEST_F(NearLightGpu, HlslMatchesTheCppSampler) {
     }
 #endif
 }
+
+// ------------------------------------------------------------------ the WebGPU test's cases
+// (tests/shaders/wgsl_cases.hpp; ctest WebGPUSnippets runs the WGSL snippets on them): per table
+// every query above, no tier and the accurate tier at the tolerances above, the fast tier with
+// the filter's extra (linear in the weight error).
+namespace {
+
+std::vector<wgsl_cases::CaseSet> write_wgsl_cases() {
+    if (!tables().error.empty()) throw std::runtime_error("generating the default tables failed: " + tables().error);
+    std::vector<wgsl_cases::CaseSet> sets;
+    for (bool thick : {true, false}) {
+        const GpuTable &t = thick ? tables().e3 : tables().e4;
+        const Run &r = queries(thick);
+        wgsl_cases::CaseSet c;
+        c.name = thick ? "nearlight E3" : "nearlight E4";
+        c.snippet = "nearlight";
+        c.texture = "3d";
+        const auto &ax = t.rounded.axes;
+        c.width = ax[0].map.count;
+        c.height = ax[1].map.count * t.layers();
+        c.depth = ax[2].map.count;
+        c.texels = t.texels;
+        c.params_decl = kParamsDecl;
+        c.params = wgsl_cases::bytes_of(make_params(t, r.queries.size(), 0.0));
+        c.body = std::string(kTestAxis) + kTestBody;
+        c.query_floats = kQueryFloats;
+        const double extra0 = hardware_filter_extra(t, 0.0), extra_per_w = hardware_filter_extra(t, 1.0) - extra0;
+        wgsl_cases::Tier none, accurate, fast;
+        accurate.name = "accurate";
+        fast.name = "fast";
+        for (const Query &q : r.queries) {
+            c.queries.insert(c.queries.end(), q.gpu.begin(), q.gpu.end());
+            c.labels.push_back(q.label);
+            c.reference.push_back(q.reference);
+            none.tol.push_back(tolerance_of(q, 0.0));
+            accurate.tol.push_back(tolerance_of(q, 0.0));
+            fast.tol.push_back(tolerance_of(q, extra0));
+            fast.tol_per_weight_error.push_back(tolerance_of(q, extra0 + extra_per_w) - tolerance_of(q, extra0));
+        }
+        c.tiers = {none, accurate, fast};
+        sets.push_back(c);
+    }
+    return sets;
+}
+
+} // namespace
+
+SLUT_WGSL_CASES(write_wgsl_cases);

@@ -33,6 +33,7 @@
 #include "generate_nearlight.hpp" // make_nearlight_table_layout, default_near_light_plan: the generator's axes
 #include "nearlight_gpu_test.hpp"
 #include "scatterlut/nearlight_hg.hpp"
+#include "wgsl_cases.hpp"
 
 extern "C" {
 #include "slut_axes.h"
@@ -306,8 +307,32 @@ constexpr double kTolE = 1e-5, kTolPerLnE = 2e-7, kTolRadiance = 1e-5, kTolClose
 // over the path's arc (kernels/slut_phase_arc.h in float), adds below 1e-6 (the medians), its
 // maxima are the float geometry's as the distant form's (docs/SHADERS.md).
 
-// filter_extra: the fast tier's (SLUT_TIER_FAST: the hardware filter) on the table's E, added to
-// every table tolerance.
+// A query's tolerance (its label's); filter_extra (the fast tier's: nearlight_gpu_test's
+// fast_tier_jump, below, for the fast tier) added where the table is sampled.
+double tolerance_of(const Query &q, double phase_g, bool slab, double filter_extra) {
+    const double geometry = kTolPerConditioning * q.conditioning;
+    const double T = q.label == "E" ? q.gpu[2] : 0.0;
+    const double table_part = kTolE + kTolPerLnE * std::fabs(q.ln_E) + filter_extra;
+    if (q.label == "distant") return kTolClosedForm + geometry;
+    if (q.label == "thin") return kTolClosedForm + geometry;
+    if (q.label == "E") return table_part + kTolDivisorPerT * T;
+    // radiance: T = sigma_t l of the geometry, up to the T axis's end
+    const double Tmax = table_for(phase_g, slab).rounded.axes[0].map.max;
+    return kTolRadiance + geometry + table_part + kTolDivisorPerT * Tmax;
+}
+
+// The fast tier's filter moves E by its weight error times (at most) the texels' largest step
+// along the three texture axes together: this.
+double fast_tier_jump(const Texture &t) {
+    const auto &ax = t.rounded.axes;
+    const size_t n0 = static_cast<size_t>(ax[0].map.count), n1 = static_cast<size_t>(ax[1].map.count) * t.layers();
+    double jump = 0;
+    for (size_t k = 0; k + n0 * n1 < t.texels.size(); ++k)
+        jump = std::max(jump, double{std::fabs(t.texels[k + 1] - t.texels[k]) + std::fabs(t.texels[k + n0] - t.texels[k]) +
+                                     std::fabs(t.texels[k + n0 * n1] - t.texels[k])});
+    return jump;
+}
+
 void expect_agreement(const std::vector<float> &got, double phase_g, bool slab, const std::string &run,
                       ::testing::Test *test, double filter_extra = 0.0) {
     const std::vector<Query> &qs = queries(phase_g, slab);
@@ -320,18 +345,7 @@ void expect_agreement(const std::vector<float> &got, double phase_g, bool slab, 
         for (size_t i = 0; i < qs.size(); ++i)
             if (qs[i].label == label) idx.push_back(i);
         if (idx.empty()) continue;
-        const auto tolerance = [&](size_t i) {
-            const Query &q = qs[i];
-            const double geometry = kTolPerConditioning * q.conditioning;
-            const double T = label == "E" ? q.gpu[2] : 0.0;
-            const double table_part = kTolE + kTolPerLnE * std::fabs(q.ln_E) + filter_extra;
-            if (label == "distant") return kTolClosedForm + geometry;
-            if (label == "thin") return kTolClosedForm + geometry;
-            if (label == "E") return table_part + kTolDivisorPerT * T;
-            // radiance: T = sigma_t l of the geometry, up to the T axis's end
-            const double Tmax = table_for(phase_g, slab).rounded.axes[0].map.max;
-            return kTolRadiance + geometry + table_part + kTolDivisorPerT * Tmax;
-        };
+        const auto tolerance = [&](size_t i) { return tolerance_of(qs[i], phase_g, slab, filter_extra); };
         const Stats st = error_stats(got, reference, idx, tolerance);
         std::printf("[ %s g=%g %s ] %-9s n=%zu  max %.3g  p99 %.3g  median %.3g  (worst: gpu %.9g, C++ %.9g)  "
                     "max error/tolerance %.2f\n",
@@ -435,14 +449,7 @@ TEST_F(GpuNearLightHg, GlslFastTierMatchesTheCppSampler) {
     ASSERT_GE(weight_error, 0.0) << "the ramp shader failed";
     for (double phase_g : kPhaseGs)
         for (bool slab : {false, true}) {
-            const Texture &t = table_for(phase_g, slab);
-            const auto &ax = t.rounded.axes;
-            const size_t n0 = static_cast<size_t>(ax[0].map.count), n1 = static_cast<size_t>(ax[1].map.count) * t.layers();
-            double jump = 0;
-            for (size_t k = 0; k + n0 * n1 < t.texels.size(); ++k)
-                jump = std::max(jump, double{std::fabs(t.texels[k + 1] - t.texels[k]) +
-                                             std::fabs(t.texels[k + n0] - t.texels[k]) +
-                                             std::fabs(t.texels[k + n0 * n1] - t.texels[k])});
+            const double jump = fast_tier_jump(table_for(phase_g, slab));
             std::string error;
             const std::vector<float> got = run_on_gpu(
                 nearlight_gpu_test::glsl_compute_source(snippet("glsl"), kTestBody, "#define SLUT_TIER_FAST\n"), phase_g,
@@ -468,3 +475,71 @@ TEST_F(GpuNearLightHg, HlslMatchesTheCppSampler) {
     }
 #endif
 }
+
+// ------------------------------------------------------------------ the WebGPU test's cases
+// (tests/shaders/wgsl_cases.hpp; ctest WebGPUSnippets runs the WGSL snippets on them): per phase g
+// and table every query above, no tier and the accurate tier at the tolerances above, the fast
+// tier with GlslFastTierMatchesTheCppSampler's filter extra (2 x the weight error x
+// fast_tier_jump) where the table is sampled.
+namespace {
+
+// The RGB entry point (slut_near_light_hg_radiance_rgb: the radiance in a loop over the channels)
+// takes minutes to compile on SwiftShader, in WebGPU as in WebGL2 (a single radiance: ~0.6 s; the
+// loop around it: > 3 min, where the GPU process died after 7 min); its queries go into a set of
+// their own, which the WebGPU test skips on SwiftShader, saying why. The other set's body has the
+// RGB call replaced by a constant (never reached: it has no RGB queries).
+constexpr const char *kRgbSlowOnSwiftShader =
+    "slut_near_light_hg_radiance_rgb (a loop around the radiance) takes minutes to compile on SwiftShader "
+    "(WebGL2 too; one radiance: ~0.6 s)";
+
+std::vector<wgsl_cases::CaseSet> write_wgsl_cases() {
+    std::vector<wgsl_cases::CaseSet> sets;
+    for (double phase_g : kPhaseGs)
+        for (bool slab : {false, true})
+            for (bool rgb : {false, true}) {
+            const GpuTable &t = table_for(phase_g, slab);
+            const std::vector<Query> &qs = queries(phase_g, slab);
+            wgsl_cases::CaseSet c;
+            char name[64];
+            std::snprintf(name, sizeof name, "nearlight_hg %s g=%g%s", slab ? "E4_hg" : "E3_hg", phase_g,
+                          rgb ? " rgb" : "");
+            c.name = name;
+            c.snippet = "nearlight_hg";
+            c.texture = "3d";
+            const auto &ax = t.rounded.axes;
+            c.width = ax[0].map.count;
+            c.height = ax[1].map.count * t.layers();
+            c.depth = ax[2].map.count;
+            c.texels = t.texels;
+            c.params_decl = kParamsDecl;
+            size_t n = 0;
+            for (const Query &q : qs) n += (q.label == "rgb" || q.label == "rgb_clear") == rgb ? 1 : 0;
+            c.params = wgsl_cases::bytes_of(make_params(t, n, phase_g));
+            c.body = std::string(rgb ? "" : "#define slut_near_light_hg_radiance_rgb(...) SLUT_FLOAT3(-1.0, -1.0, -1.0)\n") +
+                     kTestAxis + kTestBody;
+            if (rgb) c.slow_on_swiftshader = kRgbSlowOnSwiftShader;
+            c.query_floats = kQueryFloats;
+            const double jump = fast_tier_jump(t); // the fast tier: 2 x the weight error x this
+            wgsl_cases::Tier none, accurate, fast;
+            accurate.name = "accurate";
+            fast.name = "fast";
+            for (const Query &q : qs) {
+                if ((q.label == "rgb" || q.label == "rgb_clear") != rgb) continue;
+                c.queries.insert(c.queries.end(), q.gpu.begin(), q.gpu.end());
+                c.labels.push_back(q.label);
+                c.reference.push_back(q.reference);
+                const double tol = tolerance_of(q, phase_g, slab, 0.0);
+                none.tol.push_back(tol);
+                accurate.tol.push_back(tol);
+                fast.tol.push_back(tol);
+                fast.tol_per_weight_error.push_back(tolerance_of(q, phase_g, slab, 2.0 * jump) - tol);
+            }
+            c.tiers = {none, accurate, fast};
+            sets.push_back(c);
+        }
+    return sets;
+}
+
+} // namespace
+
+SLUT_WGSL_CASES(write_wgsl_cases);

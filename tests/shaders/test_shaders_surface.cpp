@@ -38,6 +38,8 @@ extern "C" {
 #include "slut_surface_table.h"
 }
 
+#include "wgsl_cases.hpp"
+
 using namespace gpu_harness;
 
 namespace {
@@ -304,10 +306,10 @@ float test_eval(int i) {
 // The compute shaders around the snippet (gpu_harness's wrappers): the uniform block holds per
 // table its two axes (min, max, scale, -) and (warp, count, -, -) and (exponent, row0, -, -).
 // defines: "" (no tier, as SLUT_TIER_ACCURATE) or "#define SLUT_TIER_FAST\n" (one filtered fetch).
+// The uniform block's fields (GLSL; struct Params below holds them, std140).
+const char *kParamsDecl = "    vec4 axis_f[4]; ivec4 axis_i[4]; ivec4 table_i[2]; int n_queries;";
 std::string glsl_compute_source(const std::string &defines = "") {
-    return gpu_harness::glsl_compute_source(glsl_snippet(),
-                                            "    vec4 axis_f[4]; ivec4 axis_i[4]; ivec4 table_i[2]; int n_queries;",
-                                            kTestBody, defines, false);
+    return gpu_harness::glsl_compute_source(glsl_snippet(), kParamsDecl, kTestBody, defines, false);
 }
 
 std::string hlsl_compute_source() {
@@ -373,6 +375,29 @@ constexpr double kTolG = 2e-5, kTolRadiance = 5e-5, kTolPerConditioning = 2e-7;
 
 // extra: added to every tolerance (the fast tier's filter weights: weight error times the
 // largest jump of the stored ln ratio across a cell, which moves G and every term relatively).
+double tolerance_of(const Query &q, double extra) {
+    if (q.label == "G" || q.label == "G_beyond") return kTolG + extra;
+    return kTolRadiance + kTolPerConditioning * q.conditioning + extra;
+}
+
+// The largest jump of the stored ln ratio across a cell of either table (the fast tier's filter
+// moves G by its weight error times this).
+double max_cell_jump() {
+    double jump = 0;
+    for (const GpuTable *t : {&tables().diffuse, &tables().specular}) {
+        const int nT = t->rounded.axes[0].map.count, nth = t->rounded.axes[1].map.count;
+        for (int j = 0; j < nth; ++j)
+            for (int i = 0; i < nT; ++i) {
+                const double v = t->rounded.values[static_cast<size_t>(j) * nT + i];
+                double step = 0;
+                if (i + 1 < nT) step += std::fabs(t->rounded.values[static_cast<size_t>(j) * nT + i + 1] - v);
+                if (j + 1 < nth) step += std::fabs(t->rounded.values[static_cast<size_t>(j + 1) * nT + i] - v);
+                jump = std::max(jump, step);
+            }
+    }
+    return jump;
+}
+
 void expect_agreement(const std::vector<float> &got, const std::string &run, ::testing::Test *test,
                       double extra = 0.0) {
     const Run &r = queries();
@@ -383,10 +408,7 @@ void expect_agreement(const std::vector<float> &got, const std::string &run, ::t
         for (size_t i = 0; i < r.queries.size(); ++i)
             if (r.queries[i].label == label) idx.push_back(i);
         if (idx.empty()) continue;
-        const auto tolerance = [&](size_t i) {
-            if (label == "G" || label == "G_beyond") return kTolG + extra;
-            return kTolRadiance + kTolPerConditioning * r.queries[i].conditioning + extra;
-        };
+        const auto tolerance = [&](size_t i) { return tolerance_of(r.queries[i], extra); };
         const Stats st = error_stats(got, r.reference, idx, tolerance);
         std::printf("[ %s ] %-11s n=%zu  max %.3g  p99 %.3g  median %.3g  (worst: gpu %.9g, C++ %.9g)  "
                     "max error/tolerance %.2f\n",
@@ -407,17 +429,17 @@ void expect_agreement(const std::vector<float> &got, const std::string &run, ::t
     }
 }
 
-#if SLUT_HAVE_EGL
-std::vector<float> run_on_gpu(const std::string &source, std::string *error) {
+// The uniform block of the compute shaders (std140).
+struct Params {
+    float axis_f[4][4];
+    int32_t axis_i[4][4];
+    int32_t table_i[2][4];
+    int32_t n_queries, pad[3];
+};
+
+Params test_params() {
     const Run &r = queries();
-    std::vector<float> packed;
-    for (const Query &q : r.queries) packed.insert(packed.end(), q.gpu.begin(), q.gpu.end());
-    struct Params {
-        float axis_f[4][4];
-        int32_t axis_i[4][4];
-        int32_t table_i[2][4];
-        int32_t n_queries, pad[3];
-    } params{};
+    Params params{};
     const GpuTable *ts[2] = {&tables().diffuse, &tables().specular};
     for (int k = 0; k < 2; ++k) {
         for (int a = 0; a < 2; ++a) {
@@ -432,6 +454,15 @@ std::vector<float> run_on_gpu(const std::string &source, std::string *error) {
         params.table_i[k][1] = ts[k]->row0;
     }
     params.n_queries = static_cast<int32_t>(r.queries.size());
+    return params;
+}
+
+#if SLUT_HAVE_EGL
+std::vector<float> run_on_gpu(const std::string &source, std::string *error) {
+    const Run &r = queries();
+    std::vector<float> packed;
+    for (const Query &q : r.queries) packed.insert(packed.end(), q.gpu.begin(), q.gpu.end());
+    const Params params = test_params();
     return run_compute(source, tables().texels, kTCount, 2 * kThetaCount, 0, packed, r.queries.size(), &params,
                        sizeof params, error);
 }
@@ -517,18 +548,7 @@ TEST_F(SurfaceGpu, GlslFastTierAgreesToTheFilterPrecision) {
 #if SLUT_HAVE_EGL
     const double weight_error = hardware_filter_weight_error();
     ASSERT_GE(weight_error, 0.0) << "the ramp shader failed";
-    double jump = 0;
-    for (const GpuTable *t : {&tables().diffuse, &tables().specular}) {
-        const int nT = t->rounded.axes[0].map.count, nth = t->rounded.axes[1].map.count;
-        for (int j = 0; j < nth; ++j)
-            for (int i = 0; i < nT; ++i) {
-                const double v = t->rounded.values[static_cast<size_t>(j) * nT + i];
-                double step = 0;
-                if (i + 1 < nT) step += std::fabs(t->rounded.values[static_cast<size_t>(j) * nT + i + 1] - v);
-                if (j + 1 < nth) step += std::fabs(t->rounded.values[static_cast<size_t>(j + 1) * nT + i] - v);
-                jump = std::max(jump, step);
-            }
-    }
+    const double jump = max_cell_jump();
     const double extra = 2.0 * weight_error * jump;
     std::printf("[ filter ] weight error %.3g, largest cell jump %.3g: extra tolerance %.3g\n", weight_error, jump, extra);
     std::string error;
@@ -550,3 +570,42 @@ TEST_F(SurfaceGpu, HlslMatchesTheCppFrontEnd) {
     expect_agreement(got, "hlsl", this);
 #endif
 }
+
+// ------------------------------------------------------------------ the WebGPU test's cases
+// (tests/shaders/wgsl_cases.hpp; ctest WebGPUSnippets runs the WGSL snippets on them): every query
+// above, no tier and the accurate tier at the tolerances above, the fast tier with the filter's
+// extra 2 x weight error x the largest cell jump, as GlslFastTierAgreesToTheFilterPrecision.
+namespace {
+
+std::vector<wgsl_cases::CaseSet> write_wgsl_cases() {
+    const Run &r = queries();
+    wgsl_cases::CaseSet c;
+    c.name = "surface";
+    c.snippet = "surface";
+    c.width = kTCount;
+    c.height = 2 * kThetaCount;
+    c.texels = tables().texels;
+    c.params_decl = kParamsDecl;
+    c.params = wgsl_cases::bytes_of(test_params());
+    c.body = kTestBody;
+    c.query_floats = kQueryFloats;
+    const double per_weight_error = 2.0 * max_cell_jump();
+    wgsl_cases::Tier none, accurate, fast;
+    accurate.name = "accurate";
+    fast.name = "fast";
+    for (const Query &q : r.queries) {
+        c.queries.insert(c.queries.end(), q.gpu.begin(), q.gpu.end());
+        c.labels.push_back(q.label);
+        c.reference.push_back(q.reference);
+        none.tol.push_back(tolerance_of(q, 0.0));
+        accurate.tol.push_back(tolerance_of(q, 0.0));
+        fast.tol.push_back(tolerance_of(q, 0.0));
+        fast.tol_per_weight_error.push_back(per_weight_error);
+    }
+    c.tiers = {none, accurate, fast};
+    return {c};
+}
+
+} // namespace
+
+SLUT_WGSL_CASES(write_wgsl_cases);

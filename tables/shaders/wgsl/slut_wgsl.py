@@ -300,7 +300,7 @@ def glsl_to_c(text):
     text = re.sub(r'\b(%s)\s*\(' % '|'.join(CONSTRUCTOR_NAMES), CTOR_PREFIX + r'\1(', text)
     structs = re.findall(r'\bstruct\s+([A-Za-z_][A-Za-z0-9_]*)\s*\{', text)
     typedefs = ''.join('typedef struct %s %s;\n' % (s, s) for s in dict.fromkeys(structs))
-    return '# 1 "%s"\n%s%s' % (PARSER_PRELUDE_FILE, PARSER_PRELUDE, typedefs) + text
+    return '# 1 "%s"\n%s%s# 1 "<input>"\n' % (PARSER_PRELUDE_FILE, PARSER_PRELUDE, typedefs) + text
 
 
 def parse(c_text):
