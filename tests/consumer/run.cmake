@@ -26,9 +26,15 @@ step(${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/consumer" -B "${WORK_DIR}/build" "
 step(${CMAKE_COMMAND} --build "${WORK_DIR}/build")
 step("${WORK_DIR}/build/consumer" ${tables})
 
-# The GPU snippets, generated at build time, are installed beside the library.
+# The GPU snippets, generated at build time, are installed beside the library (and the WGSL
+# ones, one file per tier, where the build generated them).
+set(wgsl_snippets "")
+if(WITH_WGSL)
+  set(wgsl_snippets scatterlut_airlight.wgsl scatterlut_airlight_fast.wgsl scatterlut_airlight_accurate.wgsl
+                    scatterlut_nearlight_hg_fast.wgsl scatterlut_surface_accurate.wgsl)
+endif()
 foreach(snippet scatterlut_airlight.glsl scatterlut_airlight.hlsl scatterlut_nearlight.glsl scatterlut_nearlight.hlsl
-                scatterlut_airlight_hg.glsl scatterlut_airlight_hg.hlsl scatterlut_airlight_hg.essl)
+                scatterlut_airlight_hg.glsl scatterlut_airlight_hg.hlsl scatterlut_airlight_hg.essl ${wgsl_snippets})
   if(NOT EXISTS "${moved}/share/scatterlut/shaders/${snippet}")
     message(FATAL_ERROR "${snippet} is not installed in ${moved}/share/scatterlut/shaders")
   endif()
