@@ -1,16 +1,19 @@
 // The web demo in headless Chromium against the C++ render of the same view:
 //   node examples/web/browser_test.mjs SCATTERLUT RENDER_FOG WORK_DIR [--chromium PATH]
-//        [--shaders DIR (the generated .essl snippets; default build/tables/shaders)] [--require]
+//        [--shaders DIR (the generated .essl / .wgsl snippets; default build/tables/shaders)]
+//        [--backend webgl2|webgpu] [--require]
 // generates the default tables (--format all) into WORK_DIR/tables, renders
 // WORK_DIR/table.png with render_fog (C++, the tables through scatterlut::tables), opens
-// the page (?test=1, render_fog's exposure) in Chromium with SwiftShader's WebGL2, reads
-// the frame back (WORK_DIR/browser_<tier>.png) and requires PSNR >= 40 dB between the two
+// the page (?test=1, render_fog's exposure) in Chromium with SwiftShader's WebGL2 (the .essl
+// snippets; the default) or WebGPU (--backend webgpu: the .wgsl snippets, fog_webgpu.mjs), reads
+// the frame back (WORK_DIR/browser_<tier>.png; browser_webgpu_<tier>.png) and requires PSNR >= 40 dB between the two
 // tone-mapped 8-bit images, once per tier of the snippets (fast, accurate, airlight_F:
 // docs/SHADERS.md, "Tiers"; fog.mjs's tier parameter), printing each tier's first frame (its
 // shader's build on SwiftShader, then one draw); then opens the interactive page and waits for
-// its controls.
-// Without Chromium or the npm modules (npm ci in examples/web) it prints "skipped: ..."
-// and exits 77, or fails with --require.
+// its controls (WebGL2 only: headless Chromium cannot present a WebGPU canvas on SwiftShader,
+// so the WebGPU page draws the fixed view into a texture of its own).
+// Without Chromium, the npm modules (npm ci in examples/web) or, for webgpu, a WebGPU adapter
+// it prints "skipped: ..." and exits 77, or fails with --require.
 import { execFileSync } from 'node:child_process';
 import { existsSync, readFileSync, mkdirSync, writeFileSync } from 'node:fs';
 import { inflateSync, deflateSync } from 'node:zlib';
@@ -19,7 +22,7 @@ import { join } from 'node:path';
 const args = process.argv.slice(2);
 const require = args.includes('--require');
 const opt = (name) => { const i = args.indexOf(name); return i >= 0 ? args[i + 1] : undefined; };
-const valued = ['--chromium', '--shaders'];
+const valued = ['--chromium', '--shaders', '--backend'];
 const [scatterlut, renderFog, work] = args.filter((a, i) => !a.startsWith('--') && !(i > 0 && valued.includes(args[i - 1])));
 if (!work) {
 	console.error('usage: node browser_test.mjs SCATTERLUT RENDER_FOG WORK_DIR [--chromium PATH] [--shaders DIR] [--require]');
@@ -29,6 +32,11 @@ function skip(why) {
 	if (require) { console.error(`FAIL (required): ${why}`); process.exit(1); }
 	console.log(`skipped: ${why}`);
 	process.exit(77);
+}
+const backend = opt('--backend') ?? 'webgl2';
+if (!['webgl2', 'webgpu'].includes(backend)) {
+	console.error(`--backend: webgl2 or webgpu, not '${backend}'`);
+	process.exit(2);
 }
 const chromium = opt('--chromium') ?? ['/usr/bin/chromium', '/usr/bin/chromium-browser'].find((p) => existsSync(p));
 if (!chromium || !existsSync(chromium)) skip('chromium not found (Debian: apt-get install chromium)');
@@ -90,7 +98,8 @@ const phase = (what) => console.log(`[${((Date.now() - t0) / 1000).toFixed(1)} s
 const server = await startServer({ tables, shaders: opt('--shaders') });
 const browser = await puppeteer.launch({
 	executablePath: chromium, headless: true,
-	args: ['--headless=new', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox', '--disable-gpu-sandbox'],
+	args: ['--headless=new', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox', '--disable-gpu-sandbox',
+		...(backend === 'webgpu' ? ['--enable-unsafe-webgpu', '--use-webgpu-adapter=swiftshader', '--enable-features=Vulkan'] : [])],
 	// The page's first frame blocks its renderer until SwiftShader has compiled the shader, and
 	// every DevTools call with it: puppeteer's default limit per call (180 s) would cut the
 	// page wait short.
@@ -104,23 +113,33 @@ try {
 		const logs = [];
 		page.on('console', (m) => logs.push(m.text()));
 		const start = Date.now();
-		await page.goto(`http://127.0.0.1:${server.address().port}/?test=1&tier=${tier}&exposure=${exposure}`);
+		await page.goto(`http://127.0.0.1:${server.address().port}/?test=1&tier=${tier}&exposure=${exposure}&backend=${backend}`);
 		await page.waitForFunction('window.slutDone || window.slutError', { timeout: kPageWait_ms });
 		const error = await page.evaluate('window.slutError');
+		if (error && backend === 'webgpu' && /gives no WebGPU adapter/.test(error)) skip(`Chromium gives no WebGPU adapter here: ${error}`);
 		if (error) throw new Error(`page (tier ${tier}) failed: ${error}\n${logs.join('\n')}`);
+		const used = await page.evaluate('window.slutBackend');
+		if (used !== backend) throw new Error(`the page drew with ${used}, not ${backend}`);
 		const ran = await page.evaluate('window.slutTier');
 		if (ran !== tier) throw new Error(`tier ${tier} asked, ${ran} ran: ${logs.join('\n')}`);
 		frames[tier] = await page.evaluate('window.slutFrame');
 		phase(`tier ${tier}: fixed view rendered and read back, first frame (load, build, draw) ${((Date.now() - start) / 1000).toFixed(1)} s`);
 		await page.close();
 	}
-	// The interactive page (no test parameter) comes up with its controls and no error.
-	const live = await browser.newPage();
-	await live.goto(`http://127.0.0.1:${server.address().port}/`);
-	await live.waitForFunction("document.querySelector('.lil-gui') || window.slutError", { timeout: kPageWait_ms });
-	const liveError = await live.evaluate('window.slutError');
-	if (liveError) throw new Error(`interactive page failed: ${liveError}`);
-	phase('interactive page up');
+	// The interactive page (no test parameter) comes up with its controls and no error. Not for
+	// WebGPU: headless Chromium cannot present a WebGPU canvas on SwiftShader here (its swap
+	// chain finds no shared-image backing and the GPU instance is dropped); the fixed views above
+	// are drawn into a texture of the page's own.
+	if (backend === 'webgpu') {
+		console.log('interactive page: not checked on WebGPU (headless Chromium cannot present a WebGPU canvas on SwiftShader)');
+	} else {
+		const live = await browser.newPage();
+		await live.goto(`http://127.0.0.1:${server.address().port}/?backend=${backend}`);
+		await live.waitForFunction("document.querySelector('.lil-gui') || window.slutError", { timeout: kPageWait_ms });
+		const liveError = await live.evaluate('window.slutError');
+		if (liveError) throw new Error(`interactive page failed: ${liveError}`);
+		phase('interactive page up');
+	}
 } finally {
 	await browser.close();
 	server.close();
@@ -151,7 +170,7 @@ function encodePng(width, height, rgb) {
 let failed = false;
 for (const tier of kTiers) {
 	const frame = frames[tier];
-	writeFileSync(join(work, `browser_${tier}.png`), encodePng(cpp.width, cpp.height, frame));
+	writeFileSync(join(work, `browser_${backend === 'webgpu' ? 'webgpu_' : ''}${tier}.png`), encodePng(cpp.width, cpp.height, frame));
 	if (frame.length !== cpp.img.length) throw new Error(`frame has ${frame.length} values, the C++ picture ${cpp.img.length}`);
 	let mse = 0, max = 0;
 	for (let k = 0; k < frame.length; k++) {
@@ -161,7 +180,7 @@ for (const tier of kTiers) {
 	}
 	mse /= frame.length;
 	const psnr = mse > 0 ? 10 * Math.log10((255 * 255) / mse) : Infinity;
-	console.log(`tier ${tier}: browser (Chromium, SwiftShader WebGL2) vs render_fog: ${cpp.width}x${cpp.height}, PSNR ${psnr.toFixed(2)} dB, max |diff| ${max} levels, exposure ${exposure}`);
+	console.log(`tier ${tier}: browser (Chromium, SwiftShader ${backend === 'webgpu' ? 'WebGPU, WGSL' : 'WebGL2, GLSL ES'}) vs render_fog: ${cpp.width}x${cpp.height}, PSNR ${psnr.toFixed(2)} dB, max |diff| ${max} levels, exposure ${exposure}`);
 	if (!(psnr >= 40)) {
 		console.error(`FAIL: tier ${tier}: PSNR below 40 dB`);
 		failed = true;

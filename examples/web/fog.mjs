@@ -3,17 +3,24 @@
 // snippets (scatterlut_airlight.essl, scatterlut_nearlight.essl) in one full-screen
 // fragment shader: per pixel, the airlight of every lamp along the view ray and, where the
 // ray meets the wax slab, the near light through its face; Reinhard + sRGB as render_fog.
+// Where the browser has WebGPU, the same picture from the WGSL snippets of the same tier
+// (scatterlut_airlight[_tier].wgsl, scatterlut_nearlight[_tier].wgsl) in plain WebGPU:
+// fog_webgpu.mjs.
 //
 // URL parameters: exposure=X (render_fog prints it; default: a night-scene value),
 // test=1 (fixed view, no controls; sets window.slutDone when the frame is drawn),
 // tier=fast|accurate|airlight_F (docs/SHADERS.md, "Tiers"; default fast): fast and accurate
 // sample the airlight_rational table (fast: hardware filtering, which needs WebGL2's
 // OES_texture_float_linear for R32F textures; without it the page takes the accurate tier),
-// airlight_F the airlight_F table as the C++ runtime does.
+// airlight_F the airlight_F table as the C++ runtime does; on WebGPU the fast tier needs the
+// device feature float32-filterable, without it the page takes the accurate tier too.
+// backend=webgpu|webgl2 (default: WebGPU where the browser gives an adapter, else WebGL2;
+// window.slutBackend says which drew).
 import * as THREE from 'three';
 import { KTX2Loader } from 'three/addons/loaders/KTX2Loader.js';
 import { read } from 'three/addons/libs/ktx-parse.module.js';
 import { metadataFromKtx2KeyValue } from './slut.mjs';
+import { startWebGPU } from './fog_webgpu.mjs';
 
 const W = 480, H = 270; // render_fog's image
 const params = new URLSearchParams(location.search);
@@ -130,16 +137,57 @@ void main() {
 `;
 }
 
+// The camera vectors and the scene's numbers both renderers take.
+function view() {
+	const fwd = scene.target.clone().sub(scene.eye).normalize();
+	const right = fwd.clone().cross(new THREE.Vector3(0, 1, 0)).normalize();
+	const up = right.clone().cross(fwd);
+	return {
+		eye: scene.eye.toArray(), fwd: fwd.toArray(), right: right.toArray(), up: up.toArray(),
+		tanHalfFov: Math.tan((scene.fovYDeg * Math.PI) / 360), exposure: scene.exposure,
+		fogSigmaS: scene.fogSigmaS, fogSigmaA: scene.fogSigmaA, slabSigmaS: scene.slabSigmaS, slabSigmaA: scene.slabSigmaA,
+		lights: scene.lights,
+	};
+}
+
+// WebGPU where asked for or, without a backend parameter, where the browser gives an adapter.
+async function webgpuAdapter() {
+	const asked = params.get('backend');
+	if (asked === 'webgl2') return null;
+	const adapter = navigator.gpu ? await navigator.gpu.requestAdapter() : null;
+	if (!adapter && asked === 'webgpu') throw new Error('backend=webgpu: this browser gives no WebGPU adapter');
+	return adapter;
+}
+
 async function main() {
 	const canvas = document.querySelector('canvas');
 	canvas.width = W;
 	canvas.height = H;
+	const asked = params.get('tier') ?? 'fast';
+	if (!(asked in kTiers)) throw new Error(`tier=${asked}: expected one of ${Object.keys(kTiers).join(', ')}`);
+	const adapter = await webgpuAdapter();
+	window.slutBackend = adapter ? 'webgpu' : 'webgl2';
+	if (adapter) {
+		document.title = 'scatterlut: fog street (WebGPU)';
+		// The test's fixed view goes into a texture of the page's own (headless Chromium cannot
+		// present a WebGPU canvas on SwiftShader).
+		const gpu = await startWebGPU(adapter, testMode ? null : canvas, W, H, asked, kTiers);
+		const update = () => gpu.draw(view());
+		update();
+		if (testMode) {
+			window.slutFrame = await gpu.readFrame();
+			window.slutTier = gpu.tier;
+			window.slutDone = true;
+			return;
+		}
+		await controls(update, gpu.tier);
+		return;
+	}
 	const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, preserveDrawingBuffer: true });
 	renderer.setPixelRatio(1);
 	renderer.setSize(W, H, false);
 	const loader = new KTX2Loader().detectSupport(renderer);
-	let tierName = params.get('tier') ?? 'fast';
-	if (!(tierName in kTiers)) throw new Error(`tier=${tierName}: expected one of ${Object.keys(kTiers).join(', ')}`);
+	let tierName = asked;
 	if (tierName === 'fast' && !renderer.extensions.has('OES_texture_float_linear')) {
 		console.warn('OES_texture_float_linear missing: R32F tables cannot be filtered; the accurate tier instead');
 		tierName = 'accurate';
@@ -181,13 +229,12 @@ async function main() {
 	const camera = new THREE.Camera();
 
 	function update() {
-		const fwd = scene.target.clone().sub(scene.eye).normalize();
-		const right = fwd.clone().cross(new THREE.Vector3(0, 1, 0)).normalize();
-		uniforms.eye.value.copy(scene.eye);
-		uniforms.fwd.value.copy(fwd);
-		uniforms.right.value.copy(right);
-		uniforms.up.value.copy(right.clone().cross(fwd));
-		uniforms.tan_half_fov.value = Math.tan((scene.fovYDeg * Math.PI) / 360);
+		const v = view();
+		uniforms.eye.value.fromArray(v.eye);
+		uniforms.fwd.value.fromArray(v.fwd);
+		uniforms.right.value.fromArray(v.right);
+		uniforms.up.value.fromArray(v.up);
+		uniforms.tan_half_fov.value = v.tanHalfFov;
 		uniforms.fog_sigma.value.set(scene.fogSigmaS, scene.fogSigmaA);
 		uniforms.slab_sigma.value.set(scene.slabSigmaS, scene.slabSigmaA);
 		uniforms.exposure.value = scene.exposure;
@@ -213,27 +260,30 @@ async function main() {
 		window.slutDone = true;
 		return;
 	}
+	await controls(update, tierName);
+}
 
-	// Interactive: the tier (reloads the page), camera yaw/pitch, the small lamp's position, the
-	// media's sigma.
+// Interactive: the tier (reloads the page), camera yaw/pitch, the small lamp's position, the
+// media's sigma; update() redraws.
+async function controls(update, tierName) {
 	const { GUI } = await import('three/addons/libs/lil-gui.module.min.js');
 	const gui = new GUI();
 	gui.add({ tier: tierName }, 'tier', Object.keys(kTiers)).name('tier (docs/SHADERS.md)').onChange((t) => {
 		params.set('tier', t);
 		location.search = params.toString();
 	});
-	const view = { yawDeg: 0, pitchDeg: 1.3, eyeX: 0, eyeZ: 0 };
+	const angles = { yawDeg: 0, pitchDeg: 1.3, eyeX: 0, eyeZ: 0 };
 	const aim = () => {
-		scene.eye.set(view.eyeX, 1.7, view.eyeZ);
-		const yaw = (view.yawDeg * Math.PI) / 180, pitch = (view.pitchDeg * Math.PI) / 180;
+		scene.eye.set(angles.eyeX, 1.7, angles.eyeZ);
+		const yaw = (angles.yawDeg * Math.PI) / 180, pitch = (angles.pitchDeg * Math.PI) / 180;
 		scene.target.set(scene.eye.x - 30 * Math.sin(yaw), scene.eye.y + 30 * Math.tan(pitch), scene.eye.z - 30 * Math.cos(yaw));
 		update();
 	};
 	const cam = gui.addFolder('camera');
-	cam.add(view, 'yawDeg', -60, 60).onChange(aim);
-	cam.add(view, 'pitchDeg', -20, 30).onChange(aim);
-	cam.add(view, 'eyeX', -4, 4).onChange(aim);
-	cam.add(view, 'eyeZ', -8, 5).onChange(aim);
+	cam.add(angles, 'yawDeg', -60, 60).onChange(aim);
+	cam.add(angles, 'pitchDeg', -20, 30).onChange(aim);
+	cam.add(angles, 'eyeX', -4, 4).onChange(aim);
+	cam.add(angles, 'eyeZ', -8, 5).onChange(aim);
 	const lamp = { x: 2.0, y: 1.2, z: -8.6, I0: 40 };
 	const lampFolder = gui.addFolder('small lamp (in front of the slab)');
 	for (const [k, lo, hi] of [['x', 0, 4], ['y', 0.2, 3], ['z', -8.95, -6], ['I0', 0, 200]])

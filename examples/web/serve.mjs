@@ -39,7 +39,7 @@ import { fileURLToPath } from 'node:url';
 const here = dirname(fileURLToPath(import.meta.url));
 const root = resolve(here, '..', '..');
 const MIME = { '.html': 'text/html', '.mjs': 'text/javascript', '.js': 'text/javascript', '.json': 'application/json',
-	'.essl': 'text/plain', '.ktx2': 'application/octet-stream', '.wasm': 'application/wasm' };
+	'.essl': 'text/plain', '.wgsl': 'text/plain', '.ktx2': 'application/octet-stream', '.wasm': 'application/wasm' };
 
 // The longest request-target (path and query, in characters) the handler reads; longer: 414.
 // Browsers send URLs of a few hundred characters; 4096 is PATH_MAX on Linux.
