@@ -33,7 +33,6 @@
 
 extern "C" {
 #include "slut_airlight.h"
-#include "slut_airlight_rational.h"
 #include "slut_axes.h"
 }
 
@@ -557,79 +556,10 @@ TEST_F(GpuShaders, HlslMatchesTheCppSampler) {
 
 namespace {
 
-// The airlight snippet's tiers (SLUT_TIER_FAST, SLUT_TIER_ACCURATE) sample another table, the
-// airlight_rational kind (kernels/slut_airlight_rational.h: Hn on the rational axes x_m, x_t,
-// stored linearly) at the fast tier's planned size (64 x 64), Hn by slut_airlight_rational_node as
-// the generator fills it, rounded to f32. No GLSL test runs the tiers yet (the GPU bench measures
-// them against the exact radiance); the WebGPU test does, on this file's radiance, degenerate and
-// points queries, against the tier's own arithmetic in double on the same float table: the
-// set-up slut_airlight_rational_setup_of, the bilinear of the accurate tier, and
-// slut_airlight_rational_radiance.
-constexpr int kRationalCount = 64;
-
-const std::vector<float> &rational_table() {
-    static const std::vector<float> hn = [] {
-        std::vector<float> t(static_cast<size_t>(kRationalCount) * kRationalCount);
-        for (int j = 0; j < kRationalCount; ++j)
-            for (int i = 0; i < kRationalCount; ++i)
-                t[static_cast<size_t>(j) * kRationalCount + i] = static_cast<float>(slut_airlight_rational_node(
-                    static_cast<double>(i) / (kRationalCount - 1), static_cast<double>(j) / (kRationalCount - 1), 1.0));
-        return t;
-    }();
-    return hn;
-}
-
-// Hn at unit coordinates (x_m, x_t), bilinear between the nodes (the accurate tier's), in double;
-// *jump: the cell's |dHn| along m plus along t, relative to the value.
-double rational_sample(double x_m, double x_t, double *jump) {
-    const std::vector<float> &hn = rational_table();
-    const int n = kRationalCount;
-    const double pm = std::min(std::max(x_m, 0.0), 1.0) * (n - 1), pt = std::min(std::max(x_t, 0.0), 1.0) * (n - 1);
-    const int im = slut_cell_index(pm, n), it = slut_cell_index(pt, n);
-    const double fm = pm - im, ft = pt - it;
-    const auto v = [&](int i, int j) { return static_cast<double>(hn[static_cast<size_t>(j) * n + i]); };
-    const double h = (1 - ft) * ((1 - fm) * v(im, it) + fm * v(im + 1, it)) + ft * ((1 - fm) * v(im, it + 1) + fm * v(im + 1, it + 1));
-    const double dm = std::max(std::fabs(v(im + 1, it) - v(im, it)), std::fabs(v(im + 1, it + 1) - v(im, it + 1)));
-    const double dt = std::max(std::fabs(v(im, it + 1) - v(im, it)), std::fabs(v(im + 1, it + 1) - v(im + 1, it)));
-    *jump = (dm + dt) / h;
-    return h;
-}
-
-// The tier radiance in double and what its tolerance depends on: the two samples' weight in the
-// result, (viewer * jump2 + far * jump1) / (viewer - far), where the difference of the two ends is
-// taken (0 on the segment's rule and the limits), and the amplification of a relative error of
-// the two terms, (viewer + far) / (viewer - far) (at most 15: the segment's rule takes over
-// where far > 7/8 viewer).
-struct RationalReference {
-    double value = 0, amplification = 1, filter_weight = 0;
-};
-
-RationalReference rational_radiance(double ss, double sa, double I0, double D, double sg, double cg, double s) {
-    const slut_airlight_rational_setup r = slut_airlight_rational_setup_of(ss, sa, I0, D, sg, cg, s);
-    double j2 = 0, j1 = 0;
-    const double h2 = rational_sample(r.x_m2, r.x_t2, &j2), h1 = rational_sample(r.x_m1, r.x_t1, &j1);
-    RationalReference out;
-    out.value = slut_airlight_rational_radiance(r, h2, h1);
-    const double viewer = r.weight2 * h2, far = r.weight1 * h1;
-    if (r.kind == 0 && far <= (1.0 - 1.0 / SLUT_AIRLIGHT_RATIONAL_GAIN) * viewer && viewer > far) {
-        out.amplification = (viewer + far) / (viewer - far);
-        out.filter_weight = (viewer * j2 + far * j1) / (viewer - far);
-    }
-    return out;
-}
-
-// Tolerances of the tiers (relative): 2e-6 per unit of amplification for the float set-up and
-// samples (the weights 1/(q (1 + 2 sigma_t d) + 2h/pi), x_m = (m/(m + 4))^(1/4) and x_t to a few
-// ulps, the texel position x (n - 1) to ~1e-5 texel times the cell's relative jump, the float
-// bilinear), 1e-5 for the rest (the segment's corrected trapezoid, the scale), and float's
-// e^{-sigma_t D} as the airlight_F snippet's (4e-7 per unit of sigma_t D). The fast tier adds
-// the filter's weight error w times filter_weight, 1.5 x (as the other tiers' tests), and the
-// normalised coordinate's float ulp, 2^-24 n texels, times the same.
-constexpr double kTolRationalPerAmplification = 2e-6;
-
 std::vector<wgsl_cases::CaseSet> write_wgsl_cases() {
     std::vector<wgsl_cases::CaseSet> sets;
-    // The snippet without a tier: the airlight_F table, every query of the GLSL test.
+    // The snippet without a tier: the airlight_F table, every query of the GLSL test (its tiers:
+    // test_shaders_airlight_tiers.cpp).
     wgsl_cases::CaseSet c;
     c.name = "airlight";
     c.snippet = "airlight";
@@ -651,69 +581,6 @@ std::vector<wgsl_cases::CaseSet> write_wgsl_cases() {
     c.tiers.push_back(none);
     sets.push_back(c);
 
-    // The tiers: the airlight_rational table, the radiance and points queries (the tiers have no
-    // G~ entry point).
-    wgsl_cases::CaseSet r;
-    r.name = "airlight tiers (airlight_rational 64 x 64)";
-    r.snippet = "airlight";
-    r.width = r.height = kRationalCount;
-    r.texels = rational_table();
-    r.params_decl = "    int m_count; int t_count; int n_queries;";
-    r.body = R"slsl(
-float test_eval(int i) {
-    SlutAirlightTable t = slut_airlight_table(m_count, t_count);
-    int b = 16 * i;
-    int mode = int(q[b]);
-    if (mode == 1)
-        return slut_airlight_radiance(SLUT_TEX_ARG(slut_test_table), t, q[b + 1], q[b + 2], q[b + 3], q[b + 4],
-                                      q[b + 5], q[b + 6], q[b + 7]);
-    return slut_airlight_radiance_points(SLUT_TEX_ARG(slut_test_table), t, SLUT_FLOAT3(q[b + 1], q[b + 2], q[b + 3]),
-                                         SLUT_FLOAT3(q[b + 4], q[b + 5], q[b + 6]),
-                                         SLUT_FLOAT3(q[b + 7], q[b + 8], q[b + 9]), q[b + 10], q[b + 11], q[b + 12],
-                                         q[b + 13]);
-}
-)slsl";
-    r.query_floats = kQueryFloats;
-    wgsl_cases::Tier accurate, fast;
-    accurate.name = "accurate";
-    fast.name = "fast";
-    for (const Query &q : queries()) {
-        if (q.label == "Gs") continue;
-        const float *g = q.gpu.data();
-        RationalReference ref;
-        if (q.gpu[0] == kRadiance) {
-            ref = rational_radiance(g[1], g[2], g[3], g[4], g[5], g[6], std::isinf(g[7]) ? HUGE_VAL : g[7]);
-        } else {
-            // From points as the snippet forms them (light - viewer, its length, the angle's sine
-            // and cosine through the normalised pair), in double on the float positions.
-            double d[3], v[3];
-            for (int k = 0; k < 3; ++k) {
-                d[k] = static_cast<double>(g[7 + k]) - g[1 + k];
-                v[k] = g[4 + k];
-            }
-            const double D = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-            const double cx = v[1] * d[2] - v[2] * d[1], cy = v[2] * d[0] - v[0] * d[2], cz = v[0] * d[1] - v[1] * d[0];
-            const double sin_part = std::sqrt(cx * cx + cy * cy + cz * cz), cos_part = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
-            const double norm = std::sqrt(sin_part * sin_part + cos_part * cos_part);
-            ref = D > 0.0 ? rational_radiance(g[11], g[12], g[13], D, sin_part / norm, cos_part / norm,
-                                              std::isinf(g[10]) ? HUGE_VAL : g[10])
-                          : RationalReference{HUGE_VAL, 1, 0};
-        }
-        r.queries.insert(r.queries.end(), q.gpu.begin(), q.gpu.end());
-        r.labels.push_back(q.label);
-        r.reference.push_back(ref.value);
-        const double tol = kTolRadiance + kTolRationalPerAmplification * ref.amplification +
-                           kTolPerOpticalDistance * optical_distance(q);
-        accurate.tol.push_back(tol);
-        fast.tol.push_back(tol + 1.5 * ref.filter_weight * std::ldexp(static_cast<double>(kRationalCount), -24));
-        fast.tol_per_weight_error.push_back(1.5 * ref.filter_weight);
-    }
-    struct {
-        int32_t m_count, t_count, n_queries, pad;
-    } params{kRationalCount, kRationalCount, static_cast<int32_t>(r.labels.size()), 0};
-    r.params = wgsl_cases::bytes_of(params);
-    r.tiers = {accurate, fast};
-    sets.push_back(r);
     return sets;
 }
 

@@ -31,6 +31,7 @@ extern "C" {
 }
 
 #include "airlight_gpu_test.hpp"
+#include "wgsl_cases.hpp"
 
 namespace {
 
@@ -179,12 +180,16 @@ double max_cell_jump() {
     return worst;
 }
 
+// The uniform block of kParams (std140).
+struct Params {
+    int32_t m_count, t_count, n_queries, pad;
+};
+Params test_params() { return Params{kCount, kCount, static_cast<int32_t>(queries().size()), 0}; }
+
 #if SLUT_HAVE_EGL
 std::vector<float> run_tier(const std::string &source, std::string *error) {
     const scatterlut::Table &t = rational_table().table();
-    struct Params {
-        int32_t m_count, t_count, n_queries, pad;
-    } params{kCount, kCount, static_cast<int32_t>(queries().size()), 0};
+    const Params params = test_params();
     std::vector<Query> qs;
     for (const TierQuery &q : queries()) qs.push_back(q.q);
     return run_queries(source, t, qs, params, error);
@@ -321,3 +326,47 @@ TEST_F(GpuAirlightTiers, HlslTiersMatchTheCppTier) {
     }
 #endif
 }
+
+// ------------------------------------------------------------------ the WebGPU test's cases
+// (tests/shaders/wgsl_cases.hpp; ctest WebGPUSnippets runs the WGSL snippets on them): both tiers
+// on every query above, once against the C++ tier and once against the exact radiance, at the
+// tolerances above (the fast tier's filter term linear in the weight error the test measures).
+namespace {
+
+std::vector<wgsl_cases::CaseSet> write_wgsl_cases() {
+    std::vector<wgsl_cases::CaseSet> sets;
+    const double table = kDifferenceGain * table_error(), per_weight_error = kDifferenceGain * max_cell_jump();
+    for (bool vs_exact : {false, true}) {
+        wgsl_cases::CaseSet c;
+        c.name = vs_exact ? "airlight tiers vs the exact radiance" : "airlight tiers vs the C++ tier";
+        c.snippet = "airlight";
+        const scatterlut::Table &t = rational_table().table();
+        c.width = t.axes[0].map.count;
+        c.height = t.axes[1].map.count;
+        c.texels.assign(t.values.begin(), t.values.end());
+        c.params_decl = kParams;
+        c.params = wgsl_cases::bytes_of(test_params());
+        c.body = kTestBody;
+        c.query_floats = kQueryFloats;
+        wgsl_cases::Tier accurate, fast;
+        accurate.name = "accurate";
+        fast.name = "fast";
+        for (const TierQuery &q : queries()) {
+            c.queries.insert(c.queries.end(), q.q.gpu.begin(), q.q.gpu.end());
+            c.labels.push_back(q.q.gpu[0] == kRadiance ? "radiance" : "points");
+            c.reference.push_back(vs_exact ? q.exact : q.cpp);
+            const double tol = kTolFloat + kTolPerOpticalDistance * q.optical_distance +
+                               (vs_exact ? table + kTolSegmentRule : 0.0);
+            accurate.tol.push_back(tol);
+            fast.tol.push_back(tol);
+            fast.tol_per_weight_error.push_back(per_weight_error);
+        }
+        c.tiers = {accurate, fast};
+        sets.push_back(c);
+    }
+    return sets;
+}
+
+} // namespace
+
+SLUT_WGSL_CASES(write_wgsl_cases);

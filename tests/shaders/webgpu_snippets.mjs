@@ -338,8 +338,10 @@ try {
 const summary = new Map();
 for (const r of report.runs) {
 	if (!r.labels) continue;
+	// The case sets of one test and comparison together (g and the table left out of the name).
+	const group = r.set.replace(/ (g=\S+|E\d\S*)/g, '');
 	for (const [label, st] of Object.entries(r.labels)) {
-		const key = `${r.file} ${label}`;
+		const key = `${r.file} ${label} (${group})`;
 		const a = summary.get(key) ?? { n: 0, max: 0, p99: 0, median: 0, ratio: 0 };
 		summary.set(key, { n: a.n + st.n, max: Math.max(a.max, st.max), p99: Math.max(a.p99, st.p99),
 			median: Math.max(a.median, st.median), ratio: Math.max(a.ratio, st.max_ratio) });
@@ -347,7 +349,7 @@ for (const r of report.runs) {
 }
 console.log('summary (per file and label, the worst of its case sets): n, max, p99, median relative error, error/tolerance');
 for (const [key, a] of summary)
-	console.log(`  ${key.padEnd(48)} ${String(a.n).padStart(6)}  ${fmt(a.max).padEnd(8)} ${fmt(a.p99).padEnd(8)} ${fmt(a.median).padEnd(8)} ${a.ratio.toFixed(2)}`);
+	console.log(`  ${key.padEnd(72)} ${String(a.n).padStart(6)}  ${fmt(a.max).padEnd(8)} ${fmt(a.p99).padEnd(8)} ${fmt(a.median).padEnd(8)} ${a.ratio.toFixed(2)}`);
 report.summary = Object.fromEntries(summary);
 report.seconds = (Date.now() - t0) / 1000;
 writeFileSync(join(work, 'agreement.json'), JSON.stringify(report, null, 1));
