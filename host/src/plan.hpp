@@ -49,6 +49,9 @@ struct PlannedTable {
     int chosen = -1;      // the trial whose table is kept
     bool reached = false; // the chosen trial meets target_rel
     std::string verdict;  // one line: how the search ended
+    // Spot lights the table answers (airlight tables): the table path's largest relative error
+    // on the scene's spot rays (spot_measure.hpp); −1 where the scene has none for it.
+    double spot_max_rel = -1;
     Table table;          // the chosen trial's table (after resolve_plan)
     // Per-phase kinds (TableKind::per_phase): the table's g and its file stem; empty stem:
     // the kind's name.

@@ -11,6 +11,7 @@
 #include <numeric>
 
 #include "kinds/derivation.hpp"
+#include "spot_measure.hpp"
 #include "text_format.hpp"
 
 namespace scatterlut {
@@ -75,6 +76,28 @@ std::string requests_text(const PlannedTable &t) {
     std::string s;
     for (const auto &r : t.requested_by) s += (s.empty() ? "" : "; ") + r.medium + " <- " + r.light + ": " + r.need;
     return s;
+}
+
+// Spot lights served by the chosen table (docs/SPOT.md): the table path cuts each ray at the
+// cone and integrates the falloff band by parts, so its error is the table's plus the band
+// rule's. Measured on kSpotRaysPerView rays of each view of the beams against the exact spot
+// airlight, it must hold the scene's accepted radiance error, else the table misses.
+constexpr size_t kSpotRaysPerView = 200;
+constexpr uint64_t kSpotSeed = 21;
+
+void check_spot_lights(PlannedTable &t, const ScenePlan &plan, Table &best) {
+    const std::optional<SpotServing> serving = t.kind->spot_serving(plan.scene, t.plan, best);
+    if (!serving) return;
+    const SpotMeasurement m = measure_spot_lights(*serving, kSpotRaysPerView, kSpotSeed);
+    if (m.lit() == 0) return;
+    const double max_rel = m.table_max(), accepted = plan.scene.relative_error;
+    const bool holds = max_rel <= accepted;
+    t.spot_max_rel = max_rel;
+    t.verdict += "; spot lights: measured " + fmt("%.3g", max_rel) + (holds ? " <= " : " MISSES ") +
+                 "the scene's error " + fmt("%.3g", accepted) + " on " + std::to_string(m.lit()) +
+                 " lit rays inside, beside and along the beams";
+    if (!holds) t.reached = false;
+    best.extra["plan.spot_max_rel"] = fmt("%.17g", max_rel);
 }
 
 void resolve_table(PlannedTable &t, const ScenePlan &plan, Device &device, const Provenance &provenance,
@@ -181,6 +204,8 @@ void resolve_table(PlannedTable &t, const ScenePlan &plan, Device &device, const
     if (c.integration_max_rel > kIntegrationShare * target)
         t.verdict += "; WARNING: integration error " + fmt("%.3g", c.integration_max_rel) + " exceeds " +
                      fmt("%g", kIntegrationShare) + " of the target";
+
+    check_spot_lights(t, plan, best);
 
     best.extra["plan.requested_by"] = requests_text(t);
     best.extra["plan.scene_relative_error"] = fmt("%.17g", plan.scene.relative_error);

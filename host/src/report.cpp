@@ -23,6 +23,7 @@
 #include "scene.hpp"
 #include "scene_queries.hpp"
 #include "report_ladders.hpp"
+#include "report_spot.hpp"
 #include "report_writers.hpp"
 #include "svg_plot.hpp"
 #include "text_format.hpp"
@@ -101,6 +102,10 @@ int run_report(const ReportOptions &opt, const std::string &command_line) {
         write_text(opt.out_dir + "/" + kind + "_methods.svg", render_svg(methods_plot(kind, methods, accepted)));
 
         md += markdown_section(t, storage, qs, tol, res, methods);
+        const std::string spot = spot_report_section(t, scene, static_cast<size_t>(opt.queries) / 4, opt.rounds,
+                                                     opt.out_dir);
+        if (!spot.empty()) std::cout << "  spot lights: measured inside, beside and along the beams\n";
+        md += spot;
     }
     write_text(opt.out_dir + "/report.md", md);
     std::cout << "wrote " << opt.out_dir << "/report.md\n";

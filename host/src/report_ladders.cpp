@@ -24,34 +24,8 @@ constexpr uint64_t kToleranceSeed = 11; // the same nodes on every rung
 constexpr uint64_t kLookupSeed = 13;
 constexpr size_t kLookups = 1 << 14;
 
-ErrorStats error_stats(const std::vector<double> &err) {
-    ErrorStats s;
-    s.points = err.size();
-    if (err.empty()) return s;
-    s.median = percentile(err, 0.5);
-    s.p90 = percentile(err, 0.9);
-    s.p99 = percentile(err, 0.99);
-    s.max = *std::max_element(err.begin(), err.end());
-    return s;
-}
-
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// Runs every job `rounds` times, interleaved (job 0, 1, …, 0, 1, …), so that the machine's
-// drift over minutes affects all of them alike; returns each job's median seconds.
-std::vector<double> interleaved_median_seconds(int rounds, const std::vector<std::function<void()>> &jobs) {
-    std::vector<std::vector<double>> t(jobs.size());
-    for (int r = 0; r < rounds; ++r)
-        for (size_t j = 0; j < jobs.size(); ++j) {
-            const auto t0 = std::chrono::steady_clock::now();
-            jobs[j]();
-            t[j].push_back(seconds_since(t0));
-        }
-    std::vector<double> out;
-    for (auto &v : t) out.push_back(percentile(v, 0.5));
-    return out;
 }
 
 // Keeps a computed value alive so that timed loops are not optimised away.
@@ -96,6 +70,33 @@ ErrorStats radiance_errors(const TableKind &kind, const Table &table, const Radi
 }
 
 } // namespace
+
+ErrorStats error_stats(const std::vector<double> &err) {
+    ErrorStats s;
+    s.points = err.size();
+    if (err.empty()) return s;
+    s.median = percentile(err, 0.5);
+    s.p90 = percentile(err, 0.9);
+    s.p99 = percentile(err, 0.99);
+    s.max = *std::max_element(err.begin(), err.end());
+    return s;
+}
+
+// Runs every job `rounds` times, interleaved (job 0, 1, …, 0, 1, …), so that the machine's
+// drift over minutes affects all of them alike; returns each job's median seconds.
+std::vector<double> interleaved_median_seconds(int rounds, const std::vector<std::function<void()>> &jobs) {
+    std::vector<std::vector<double>> t(jobs.size());
+    for (int r = 0; r < rounds; ++r)
+        for (size_t j = 0; j < jobs.size(); ++j) {
+            const auto t0 = std::chrono::steady_clock::now();
+            jobs[j]();
+            t[j].push_back(seconds_since(t0));
+        }
+    std::vector<double> out;
+    for (auto &v : t) out.push_back(percentile(v, 0.5));
+    return out;
+}
+
 
 double planned_tolerance(const PlannedTable &t) { return t.kind->integration_tolerance(t.plan); }
 

@@ -24,6 +24,13 @@ struct ErrorStats {
 };
 
 
+// Median, p90, p99 and max of `err` (relative errors).
+ErrorStats error_stats(const std::vector<double> &err);
+
+// Runs every job `rounds` times, interleaved (job 0, 1, …, 0, 1, …), so that the machine's
+// drift over minutes affects all of them alike; returns each job's median seconds.
+std::vector<double> interleaved_median_seconds(int rounds, const std::vector<std::function<void()>> &jobs);
+
 struct ToleranceRung {
     double tolerance = 0;
     double median_ms = 0;

@@ -161,6 +161,7 @@ nlohmann::json to_json(const ScenePlan &plan) {
         e["reached"] = t.reached;
         e["fixed_resolution"] = t.fixed_resolution;
         e["verdict"] = t.verdict;
+        if (t.spot_max_rel >= 0) e["spot_max_rel"] = t.spot_max_rel; // the spot lights' check (spot_measure.hpp)
         e["seconds"] = c.seconds; // the chosen trial alone
         double search = 0;
         for (const PlanTrial &tr : t.trials) search += tr.seconds;

@@ -122,9 +122,97 @@ std::vector<SurfaceQuery> sample_surface_queries(const Scene &scene, int exponen
     return queries_over<SurfaceQuery>(lit, count, seed, draw);
 }
 
+const char *spot_view_name(SpotView view) {
+    switch (view) {
+    case SpotView::inside: return "inside";
+    case SpotView::beside: return "beside";
+    case SpotView::along: return "along";
+    }
+    return "?";
+}
+
+namespace {
+
+// A unit vector at angle θ (cos θ = cos_theta) from the unit axis n, at azimuth φ.
+Vec3 around(const Vec3 &n, double cos_theta, double phi) {
+    // An orthonormal pair e1, e2 ⟂ n (the axis component with the smallest |n_i| left out).
+    const Vec3 helper = std::fabs(n[0]) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+    Vec3 e1{n[1] * helper[2] - n[2] * helper[1], n[2] * helper[0] - n[0] * helper[2],
+            n[0] * helper[1] - n[1] * helper[0]};
+    const double l1 = std::sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+    for (double &c : e1) c /= l1;
+    const Vec3 e2{n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0]};
+    const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+    Vec3 out{};
+    for (int i = 0; i < 3; ++i)
+        out[i] = cos_theta * n[i] + sin_theta * (std::cos(phi) * e1[i] + std::sin(phi) * e2[i]);
+    return out;
+}
+
+Vec3 unit(const Vec3 &v) {
+    const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    return {v[0] / l, v[1] / l, v[2] / l};
+}
+
+} // namespace
+
+std::vector<SpotQuery> sample_spot_queries(const Scene &scene, SpotView view, size_t count, uint64_t seed) {
+    auto lit = pairs(scene, [](const SceneMedium &m) { return m.viewer_inside; });
+    lit.erase(std::remove_if(lit.begin(), lit.end(), [](const auto &p) { return !p.second->spot; }), lit.end());
+    const auto draw = [view](Rng &rng, const SceneMedium &m, const SceneLight &l, size_t) {
+        SpotQuery q;
+        q.sigma_s_per_m = m.sigma_s_per_m;
+        q.sigma_a_per_m = m.sigma_a_per_m;
+        q.light.position_m = {0, 0, 0};
+        q.light.direction = unit(l.spot_direction);
+        q.light.outer_angle_rad = l.outer_angle_deg * kDegree;
+        q.light.inner_angle_rad = l.inner_angle_deg * kDegree;
+        q.light.intensity_W_per_sr = l.intensity_W_per_sr;
+        const Vec3 &n = q.light.direction;
+        const double D = spread(rng, l.distance_m);
+        const double cos_outer = std::cos(q.light.outer_angle_rad);
+        const double phi = uniform(rng, 0.0, 2.0 * kPi);
+        SpotView v = view;
+        if (v == SpotView::beside && !(cos_outer > -1.0)) v = SpotView::inside; // no outside
+        if (v == SpotView::inside) {
+            const Vec3 w = around(n, uniform(rng, cos_outer, 1.0), phi);
+            q.viewer_m = {D * w[0], D * w[1], D * w[2]};
+            q.view_dir = around({0, 0, 1}, uniform(rng, -1.0, 1.0), uniform(rng, 0.0, 2.0 * kPi));
+        } else if (v == SpotView::beside) {
+            const Vec3 w = around(n, uniform(rng, -1.0, cos_outer), phi);
+            q.viewer_m = {D * w[0], D * w[1], D * w[2]};
+            // A point of the beam: on the axis at r, moved off it within the cone's radius.
+            const double r = D * std::exp(uniform(rng, std::log(0.1), std::log(3.0)));
+            const double radius = r * std::tan(std::min(q.light.outer_angle_rad, 1.4)) * std::sqrt(uniform(rng, 0.0, 1.0));
+            const Vec3 off = around(n, 0.0, uniform(rng, 0.0, 2.0 * kPi));
+            Vec3 target{};
+            for (int i = 0; i < 3; ++i) target[i] = r * n[i] + radius * off[i] - q.viewer_m[i];
+            q.view_dir = unit(target);
+        } else { // along the axis line, in front of the light or behind it
+            const double side = uniform(rng, 0.0, 1.0) < 0.5 ? 1.0 : -1.0;
+            q.viewer_m = {side * D * n[0], side * D * n[1], side * D * n[2]};
+            const double spread_rad = std::min(q.light.outer_angle_rad, kPi / 3);
+            const Vec3 dir = around(n, uniform(rng, std::cos(spread_rad), 1.0), phi);
+            const double look = uniform(rng, 0.0, 1.0) < 0.5 ? 1.0 : -1.0; // along the axis or against it
+            q.view_dir = {look * dir[0], look * dir[1], look * dir[2]};
+        }
+        q.length_m = uniform(rng, 0.0, 1.0) < 0.25 ? std::numeric_limits<double>::infinity()
+                                                   : D * std::exp(uniform(rng, std::log(1e-3), std::log(10.0)));
+        return q;
+    };
+    return queries_over<SpotQuery>(lit, count, seed, draw);
+}
+
 std::string describe_airlight_queries() {
     return "viewer-inside media x point lights: D log-uniform over the light's distance range, cos(gamma) uniform in "
            "[-1, 1], s = inf for 1/4 of the queries, else log-uniform in [1e-3 D, 10 D]";
+}
+
+std::string describe_spot_queries() {
+    return "viewer-inside media x spot lights: D log-uniform over the light's distance range; inside: the viewer "
+           "within the outer cone, any view direction; beside: outside it, looking at a point of the beam; along: "
+           "on the axis line in front of or behind the light, looking along or against the axis within the outer "
+           "angle (at most 60 deg); s = inf for 1/4 of the rays, else log-uniform in [1e-3 D, 10 D]";
 }
 
 std::string describe_near_light_queries(bool finite) {

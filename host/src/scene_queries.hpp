@@ -11,6 +11,7 @@
 
 #include "scatterlut/airlight.hpp"
 #include "scatterlut/nearlight.hpp"
+#include "scatterlut/spot.hpp"
 #include "scatterlut/surface.hpp"
 #include "scene.hpp"
 
@@ -36,8 +37,23 @@ std::vector<NearLightQuery> sample_near_light_queries(const Scene &scene, bool f
 // over the surfaces' light_distance_m, θ uniform in [0, π] (θ_s for n = 1, θ_r for n > 1).
 std::vector<SurfaceQuery> sample_surface_queries(const Scene &scene, int exponent, size_t count, uint64_t seed);
 
+// Spot lights (docs/SPOT.md) seen three ways: for every medium the viewer is inside and every
+// spot lighting it, in equal shares, the viewer at D (log-uniform over the light's distance
+// range) from the light,
+//   inside  within the outer cone (uniform in solid angle), looking anywhere (uniform sphere);
+//   beside  outside it, looking at a point of the beam (on the axis at 0.1–3 D, moved off it
+//           within the cone's radius there);
+//   along   on the axis line, in front of the light or behind it, looking along ±axis within
+//           the outer angle (at most 60°);
+// s as for sample_airlight_queries. Lights of other types are left out; a spot with no outer
+// edge (θ_o = π) has no "beside": those draws look from inside.
+enum class SpotView { inside, beside, along };
+const char *spot_view_name(SpotView view);
+std::vector<SpotQuery> sample_spot_queries(const Scene &scene, SpotView view, size_t count, uint64_t seed);
+
 // One sentence for reports: what the samplers above draw.
 std::string describe_airlight_queries();
 std::string describe_near_light_queries(bool finite);
+std::string describe_spot_queries();
 
 } // namespace scatterlut

@@ -18,6 +18,7 @@
 #include "text_format.hpp"
 #include "scatterlut/airlight.hpp"
 #include "scatterlut/airlight_hg.hpp"
+#include "scatterlut/spot.hpp"
 
 namespace scatterlut {
 
@@ -183,6 +184,14 @@ public:
         return m;
     }
     const char *runtime_class() const override { return kAnisotropic ? "AirlightHgTable" : "AirlightTable"; }
+    // Spots are served by the point light's table: the ray cut by the cone (docs/SPOT.md).
+    std::optional<SpotServing> spot_serving(const Scene &scene, const std::any &plan,
+                                            const Table &table) const override {
+        const double g = this->plan_of(plan).phase_g;
+        auto runtime = std::make_shared<Runtime>(table);
+        return SpotServing{media_of_phase(scene, g), g,
+                           [runtime](const SpotQuery &q) { return spot_airlight_radiance(*runtime, q); }};
+    }
     std::string methods_note() const override {
         if (kAnisotropic)
             return " With a Henyey-Greenstein phase the closed forms are approximations: thin drops the extinction "

@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,7 @@
 
 #include "kinds/runtime_kind.hpp"
 #include "measurement.hpp"
+#include "scatterlut/spot.hpp"
 #include "opencl_device.hpp"
 #include "scene.hpp"
 #include "scatterlut/table.hpp"
@@ -54,6 +56,14 @@ struct RuntimeMethod {
     std::string name, what;
     bool reference = false;                  // the exact quadrature: the others are measured against it
     std::function<double(size_t)> radiance;  // of query k of the RadianceQueries it was made for
+};
+
+// Spot lights (docs/SPOT.md) a table answers: the media it serves (as its radiance_queries
+// draws them), its phase and the table path's radiance of a spot ray (spot_airlight_radiance).
+struct SpotServing {
+    Scene media;
+    double phase_g = 0;
+    std::function<double(const SpotQuery &)> table_radiance;
 };
 
 class TableKind {
@@ -133,6 +143,11 @@ public:
                                                 size_t count) const = 0;
     virtual const char *runtime_class() const = 0; // "AirlightTable", …
     virtual std::string methods_note() const = 0;  // the report's text under its runtime methods ("" none)
+    // The spot lights this kind's table answers (the airlight tables: spot_airlight_radiance);
+    // none by default. The planner and the report measure them (spot_measure.hpp).
+    virtual std::optional<SpotServing> spot_serving(const Scene &, const std::any &, const Table &) const {
+        return std::nullopt;
+    }
 
 };
 
