@@ -1,6 +1,7 @@
 #include "spot_measure.hpp"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 
 #include "measure_util.hpp"
@@ -88,6 +89,7 @@ SpotMeasurement measure_spot_lights(const SpotServing &serving, size_t rays_per_
         e.rays = rays.size();
         for (const auto &r : v) {
             if (!std::isfinite(r[0])) continue; // through the lit apex: no finite radiance to compare
+            if (r[0] > 0.0 && r[0] < DBL_MIN) continue; // subnormal: fewer digits than any error measured
             if (r[0] == 0.0) {
                 e.dark_answered += r[1] != 0.0;
                 continue;

@@ -14,7 +14,8 @@
 
 namespace scatterlut {
 
-// Relative errors on the radiance of the rays with a finite, positive exact radiance ("lit").
+// Relative errors on the radiance of the rays with a finite, positive exact radiance ("lit";
+// subnormal radiances, below 2.2e-308 W/(m²·sr) with fewer digits than the errors, left out).
 struct SpotViewErrors {
     SpotView view = SpotView::inside;
     size_t rays = 0, lit = 0;
