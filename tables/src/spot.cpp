@@ -161,6 +161,18 @@ SpotRay spot_ray_pieces(const SpotQuery &q) {
     return r;
 }
 
+double spot_falloff(const SpotLight &light, const Vec3 &point_m) {
+    require(finite3(point_m), "point must hold finite coordinates (m)");
+    SpotQuery q; // the light's own checks (position, axis, angles, intensity)
+    q.light = light;
+    check_spot_query(q);
+    const Vec3 w = combine(1.0, point_m, -1.0, light.position_m);
+    const double vers_outer = slut_spot_versine(std::fmin(light.outer_angle_rad, kPi));
+    const double vers_inner = slut_spot_versine(std::fmin(light.inner_angle_rad, kPi));
+    if (!(slut_vec3_length(vec(w)) > 0.0)) return light.inner_angle_rad >= kPi ? 1.0 : 0.0;
+    return slut_spot_falloff(slut_spot_versine_of(vec(unit(w)), vec(unit(light.direction))), vers_outer, vers_inner);
+}
+
 double spot_falloff_at(const SpotRay &ray, double t_m) {
     const double along = t_m - ray.closest_t_m, h = ray.miss_distance_m;
     const Vec3 w = combine(along, ray.dir, h, ray.unit_foot);

@@ -7,6 +7,7 @@
 // changes sign on a fine scan (bisected; no ray–cone algebra), in the angle φ seen from the
 // light (t = t* + h tan φ) so that close passes and infinite rays are proper integrals.
 // Then the limits (the point light, a missed beam, rays through the apex), bad input, RGB.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -362,6 +363,41 @@ TEST(SpotAirlight, RgbIsOneScalarQueryPerChannel) {
         EXPECT_EQ(got[c], scatterlut::spot_airlight_radiance_exact(one, 0.5));
     }
     EXPECT_THROW(scatterlut::spot_airlight_radiance_exact_rgb(q, {0.1, -1, 0.1}, sa, 0.0), std::invalid_argument);
+}
+
+// spot_falloff(light, point): glTF's f(θ) = clamp((cos θ − cos θ_o)/(cos θ_i − cos θ_o), 0, 1)²
+// towards a point, against the formula in cosines at angles away from the edges' rounding; 1 on
+// the axis and everywhere for the point light, 0 outside the cone and behind the light; the
+// light's fields checked.
+TEST(SpotFalloff, GltfFalloffTowardsAPoint) {
+    scatterlut::SpotLight l;
+    l.position_m = {1, 2, 3};
+    l.direction = {0, -2, 0}; // not unit
+    l.outer_angle_rad = 0.6;
+    l.inner_angle_rad = 0.3;
+    l.intensity_W_per_sr = 10;
+    const auto at_angle = [&](double theta, double r) {
+        return scatterlut::Vec3{1 + r * std::sin(theta), 2 - r * std::cos(theta), 3};
+    };
+    for (double theta : {0.0, 0.1, 0.29, 0.31, 0.45, 0.59, 0.61, 1.5, 3.0}) {
+        const double c = std::cos(theta), co = std::cos(0.6), ci = std::cos(0.3);
+        const double x = std::clamp((c - co) / (ci - co), 0.0, 1.0);
+        EXPECT_NEAR(scatterlut::spot_falloff(l, at_angle(theta, 7.5)), x * x, 1e-12) << theta;
+    }
+    EXPECT_EQ(scatterlut::spot_falloff(l, at_angle(0.0, 1e-9)), 1.0);
+    EXPECT_EQ(scatterlut::spot_falloff(l, l.position_m), 0.0); // the apex of a cone: no direction, no light
+    scatterlut::SpotLight point = l;
+    point.outer_angle_rad = point.inner_angle_rad = M_PI;
+    for (double theta : {0.0, 1.0, 3.14159})
+        EXPECT_EQ(scatterlut::spot_falloff(point, at_angle(theta, 2.0)), 1.0) << theta;
+    EXPECT_EQ(scatterlut::spot_falloff(point, point.position_m), 1.0);
+    scatterlut::SpotLight bad = l;
+    bad.direction = {0, 0, 0};
+    EXPECT_THROW(scatterlut::spot_falloff(bad, {0, 0, 0}), std::invalid_argument);
+    bad = l;
+    bad.inner_angle_rad = 0.7;
+    EXPECT_THROW(scatterlut::spot_falloff(bad, {0, 0, 0}), std::invalid_argument);
+    EXPECT_THROW(scatterlut::spot_falloff(l, {0, NAN, 0}), std::invalid_argument);
 }
 
 } // namespace

@@ -34,6 +34,12 @@ struct SpotLight {
     double intensity_W_per_sr = 0; // I0 on the axis (radiant intensity I0·f(θ) off it)
 };
 
+// glTF's falloff f ∈ [0, 1] of `light` towards the point `point_m` (θ between the axis and the
+// direction from the light to the point): what masks the light's direct illumination there
+// and, for a surface or a slab lit by a spot, the factor a renderer applies to the point
+// light's terms. 1 at the apex itself where the cone is the whole sphere, else 0 there.
+double spot_falloff(const SpotLight &light, const Vec3 &point_m);
+
 // One spot-airlight query: the medium, the view ray and the light.
 struct SpotQuery {
     double sigma_s_per_m = 0;   // scattering coefficient σ_s, 1/m
