@@ -179,7 +179,8 @@ int run_airlight_scene(const gpu_harness::Gl &gl, const Options &opt) {
                                                        w_count, 0)},
         {"sun2005", "Sun et al. 2005, 64² F table, two fetches",
          fragment_source(sun_glsl, 2, "sun2005(" + inputs + ")"), GL_TEXTURE_2D,
-         gpu_harness::make_r32f_texture(gl, f_texels, kFCount, kFCount, 0)},
+         gpu_harness::make_r32f_texture(gl, f_texels, kFCount, kFCount, 0), false,
+         {{"f_u_max", static_cast<float>(kFUMax)}}}, // the F table's u range
         {"closed", "closed form × e^{−σ_t D} (Macklin 2010)", fragment_source(closed_glsl, 2,
                                                                              "closed_form_attenuated(" + inputs + ")")},
         {"inputs", "reads the inputs only", fragment_source("", 2, "in0.x + in0.y + in0.z + in0.w + in1.x + in1.y + in1.z")},
@@ -201,12 +202,7 @@ int run_airlight_scene(const gpu_harness::Gl &gl, const Options &opt) {
         std::fprintf(stderr, "scatterlut_gpu_bench: %s\n", error.c_str());
         return 1;
     }
-    for (const Method &m : methods) { // sun2005's F table range
-        gl.glUseProgram(m.program);
-        const GLint loc = gl.glGetUniformLocation(m.program, "f_u_max");
-        if (loc >= 0) gl.glUniform1f(loc, static_cast<float>(kFUMax));
-    }
-    const std::vector<std::vector<double>> round_ms = passes.time_rounds(methods, opt);
+    const std::vector<std::vector<double>> round_ms = passes.time_rounds(methods, opt.rounds, opt.frames);
     if (gl.glGetError() != GL_NO_ERROR) {
         std::fprintf(stderr, "scatterlut_gpu_bench: OpenGL error during the timed frames\n");
         return 1;

@@ -147,7 +147,7 @@ int run_nearlight_scene(const gpu_harness::Gl &gl, const Options &opt) {
         std::fprintf(stderr, "scatterlut_gpu_bench: %s\n", error.c_str());
         return 1;
     }
-    const std::vector<std::vector<double>> round_ms = passes.time_rounds(methods, opt);
+    const std::vector<std::vector<double>> round_ms = passes.time_rounds(methods, opt.rounds, opt.frames);
 
     // The sampled pixels the table covers, with their exact radiance.
     const size_t pixels = static_cast<size_t>(opt.width) * opt.height;

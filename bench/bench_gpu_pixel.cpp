@@ -1,6 +1,6 @@
 // scatterlut_gpu_bench: the GPU per-pixel cost and accuracy of the sampling snippets' tiers
 // against the per-pixel forms engines use today, on a GPU through a surfaceless EGL context
-// (Mesa llvmpipe where there is none; tests/egl_context.hpp). Two scenes (gpu_bench.hpp):
+// (Mesa llvmpipe where there is none; host/src/egl_context.hpp). Two scenes (gpu_bench.hpp):
 //   airlight   a foggy street, every 32 x 32 tile its own lamp (bench_gpu_airlight.cpp):
 //              fast, accurate, airlight_F, sun2005, closed, inputs;
 //   nearlight  a translucent floor lit by lamps above it (bench_gpu_nearlight.cpp):

@@ -1,11 +1,20 @@
 // One surfaceless EGL display and OpenGL 4.3 core context (Mesa llvmpipe where there is no
-// GPU) with the entry points the shader tests and the GPU bench use, and program building.
-// No test framework here: tests/gpu_harness.hpp (the shader tests) and
-// bench/bench_gpu_pixel.cpp both include it. Everything is inside SLUT_HAVE_EGL.
+// GPU) with the entry points the shader tests, the GPU bench and `scatterlut report` use, and
+// program building. No test framework here: tests/gpu_harness.hpp (the shader tests),
+// bench/gpu_bench.hpp and host/src/report_gpu.cpp include it. Everything is inside
+// SLUT_HAVE_EGL (1 where the build found EGL/egl.h and GL/glcorearb.h).
+//
+// The EGL library itself: linked (the tests and the bench link libEGL), or, with
+// SLUT_EGL_DLOPEN=1, loaded at run time with dlopen("libEGL.so.1") (the `scatterlut`
+// executable: it starts and runs without libEGL, and the report says why it measured no GPU).
+// The OpenGL entry points come from eglGetProcAddress either way.
 #pragma once
 
 #ifndef SLUT_HAVE_EGL
 #define SLUT_HAVE_EGL 0
+#endif
+#ifndef SLUT_EGL_DLOPEN
+#define SLUT_EGL_DLOPEN 0
 #endif
 
 #if SLUT_HAVE_EGL
@@ -18,6 +27,9 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <GL/glcorearb.h>
+#if SLUT_EGL_DLOPEN
+#include <dlfcn.h>
+#endif
 
 namespace gpu_harness {
 
@@ -71,6 +83,47 @@ namespace gpu_harness {
     X(PFNGLDRAWARRAYSPROC, glDrawArrays)                                                   \
     X(PFNGLREADPIXELSPROC, glReadPixels)
 
+// The EGL entry points the context needs.
+#define SLUT_EGL_FUNCTIONS(X)                                                              \
+    X(PFNEGLQUERYSTRINGPROC, eglQueryString)                                               \
+    X(PFNEGLGETPROCADDRESSPROC, eglGetProcAddress)                                         \
+    X(PFNEGLINITIALIZEPROC, eglInitialize)                                                 \
+    X(PFNEGLTERMINATEPROC, eglTerminate)                                                   \
+    X(PFNEGLGETERRORPROC, eglGetError)                                                     \
+    X(PFNEGLBINDAPIPROC, eglBindAPI)                                                       \
+    X(PFNEGLCREATECONTEXTPROC, eglCreateContext)                                           \
+    X(PFNEGLDESTROYCONTEXTPROC, eglDestroyContext)                                         \
+    X(PFNEGLMAKECURRENTPROC, eglMakeCurrent)
+
+struct Egl {
+#define SLUT_EGL_MEMBER(type, name) type name = nullptr;
+    SLUT_EGL_FUNCTIONS(SLUT_EGL_MEMBER)
+#undef SLUT_EGL_MEMBER
+};
+
+// Fills `egl`; "" on success, else why not. Linked: the library's own functions. With
+// SLUT_EGL_DLOPEN: from libEGL.so.1 (the library stays loaded for the process).
+inline std::string load_egl(Egl &egl) {
+#if SLUT_EGL_DLOPEN
+    void *library = dlopen("libEGL.so.1", RTLD_NOW | RTLD_LOCAL);
+    if (!library) {
+        const char *e = dlerror();
+        return std::string("libEGL.so.1 could not be loaded (") + (e ? e : "dlopen failed") +
+               "; Debian: libegl1 and libegl-mesa0)";
+    }
+#define SLUT_EGL_LOAD(type, name)                                                          \
+    egl.name = reinterpret_cast<type>(dlsym(library, #name));                              \
+    if (!egl.name) return "libEGL.so.1 has no " #name;
+    SLUT_EGL_FUNCTIONS(SLUT_EGL_LOAD)
+#undef SLUT_EGL_LOAD
+#else
+#define SLUT_EGL_LINK(type, name) egl.name = &::name;
+    SLUT_EGL_FUNCTIONS(SLUT_EGL_LINK)
+#undef SLUT_EGL_LINK
+#endif
+    return "";
+}
+
 struct Gl {
 #define SLUT_GL_MEMBER(type, name) type name = nullptr;
     SLUT_GL_FUNCTIONS(SLUT_GL_MEMBER)
@@ -83,47 +136,50 @@ struct GpuContext {
     std::string why_not; // when !ok
     std::string renderer;
     Gl gl;
+    Egl egl;
     EGLDisplay display = EGL_NO_DISPLAY;
     EGLContext context = EGL_NO_CONTEXT;
 
     GpuContext() {
-        const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+        why_not = load_egl(egl);
+        if (!why_not.empty()) return;
+        const char *client = egl.eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
         if (!client || !std::strstr(client, "EGL_MESA_platform_surfaceless")) {
             why_not = "EGL_MESA_platform_surfaceless is not available (install libegl-mesa0 and "
                       "libgl1-mesa-dri)";
             return;
         }
         auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-            eglGetProcAddress("eglGetPlatformDisplayEXT"));
+            egl.eglGetProcAddress("eglGetPlatformDisplayEXT"));
         if (!get_platform_display) {
             why_not = "eglGetPlatformDisplayEXT is missing";
             return;
         }
         display = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         EGLint major = 0, minor = 0;
-        if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor)) {
-            why_not = "no surfaceless EGL display could be initialised (EGL error 0x" + hex(eglGetError()) +
+        if (display == EGL_NO_DISPLAY || !egl.eglInitialize(display, &major, &minor)) {
+            why_not = "no surfaceless EGL display could be initialised (EGL error 0x" + hex(egl.eglGetError()) +
                       "; is libgl1-mesa-dri installed?)";
             return;
         }
-        if (!eglBindAPI(EGL_OPENGL_API)) {
+        if (!egl.eglBindAPI(EGL_OPENGL_API)) {
             why_not = "eglBindAPI(EGL_OPENGL_API) failed";
             return;
         }
         const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 3,
                                      EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                      EGL_NONE};
-        context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+        context = egl.eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
         if (context == EGL_NO_CONTEXT) {
-            why_not = "no OpenGL 4.3 core context (EGL error 0x" + hex(eglGetError()) + ")";
+            why_not = "no OpenGL 4.3 core context (EGL error 0x" + hex(egl.eglGetError()) + ")";
             return;
         }
-        if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+        if (!egl.eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
             why_not = "eglMakeCurrent without a surface failed (EGL_KHR_surfaceless_context?)";
             return;
         }
 #define SLUT_GL_LOAD(type, name)                                                           \
-    gl.name = reinterpret_cast<type>(eglGetProcAddress(#name));                            \
+    gl.name = reinterpret_cast<type>(egl.eglGetProcAddress(#name));                        \
     if (!gl.name) {                                                                        \
         why_not = "OpenGL entry point " #name " is missing";                               \
         return;                                                                            \
@@ -136,9 +192,9 @@ struct GpuContext {
     }
     ~GpuContext() {
         if (display != EGL_NO_DISPLAY) {
-            eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-            if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
-            eglTerminate(display);
+            egl.eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            if (context != EGL_NO_CONTEXT) egl.eglDestroyContext(display, context);
+            egl.eglTerminate(display);
         }
     }
     static std::string hex(EGLint e) {
