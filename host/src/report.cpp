@@ -9,7 +9,9 @@
 #include <filesystem>
 #include <functional>
 #include <iterator>
+#include <deque>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <random>
 #include <string>
@@ -22,6 +24,7 @@
 #include "plan.hpp"
 #include "scene.hpp"
 #include "scene_queries.hpp"
+#include "report_gpu.hpp"
 #include "report_ladders.hpp"
 #include "report_spot.hpp"
 #include "report_writers.hpp"
@@ -40,6 +43,8 @@ struct ReportOptions {
     std::string device;
     int rounds = 5;
     int queries = 4000;
+    bool no_gpu = false;
+    int gpu_pixels = 32768;
 };
 
 void progress_line(const std::string &label, double f) {
@@ -79,6 +84,9 @@ int run_report(const ReportOptions &opt, const std::string &command_line) {
     md += "Device: " + device.info().describe() + ".\n";
     resolve_plan(plan, device, provenance, progress_line);
     const size_t max_bytes = static_cast<size_t>(scene.max_table_MiB * 1024.0 * 1024.0);
+    std::deque<RadianceQueries> all_queries;                  // kept for the GPU section
+    std::map<std::string, std::vector<MethodRow>> all_methods; // table name → its CPU methods
+    std::vector<GpuTableInput> gpu_inputs;
 
     for (const PlannedTable &t : plan.tables) {
         const std::string kind = t.name();
@@ -106,7 +114,32 @@ int run_report(const ReportOptions &opt, const std::string &command_line) {
                                                      opt.out_dir);
         if (!spot.empty()) std::cout << "  spot lights: measured inside, beside and along the beams\n";
         md += spot;
+        all_methods[kind] = methods;
+        all_queries.push_back(qs);
+        gpu_inputs.push_back({kind, t.kind->gpu_methods(t.table, all_queries.back()), &all_queries.back()});
     }
+
+    GpuOptions gpu_options;
+    gpu_options.enabled = !opt.no_gpu;
+    gpu_options.rounds = opt.rounds;
+    gpu_options.min_pixels = static_cast<size_t>(opt.gpu_pixels);
+    const GpuSection gpu = measure_gpu(gpu_inputs, gpu_options);
+    std::vector<std::vector<MethodRow>> gpu_cpu_rows;
+    for (const GpuGroup &g : gpu.groups) {
+        gpu_cpu_rows.push_back(group_cpu_methods(g, all_methods));
+        if (!g.why_not.empty() || g.rows.empty()) continue;
+        write_text(opt.out_dir + "/" + gpu_stem(g) + ".csv", gpu_csv(g, gpu_cpu_rows.back()));
+        write_text(opt.out_dir + "/" + gpu_stem(g) + ".svg",
+                   render_svg(gpu_plot(g, gpu_cpu_rows.back(), scene.relative_error)));
+    }
+    std::cout << "GPU: " << (gpu.measured ? gpu.renderer : gpu.why_not) << "\n";
+    for (const GpuGroup &g : gpu.groups)
+        if (gpu.measured)
+            std::cout << "  " << g.snippet << ": " << (g.why_not.empty() ? std::to_string(g.rows.size()) + " methods on " +
+                                                                          std::to_string(g.queries) + " queries"
+                                                                    : g.why_not)
+                  << "\n";
+    md += gpu_markdown(gpu, gpu_cpu_rows, scene.relative_error);
     write_text(opt.out_dir + "/report.md", md);
     std::cout << "wrote " << opt.out_dir << "/report.md\n";
     return 0;
@@ -116,8 +149,9 @@ int run_report(const ReportOptions &opt, const std::string &command_line) {
 
 void setup_report(CLI::App &app, int &exit_code, const std::string &command_line) {
     auto opt = std::make_shared<ReportOptions>();
-    auto *cmd = app.add_subcommand("report", "What accuracy costs in time: tolerance and resolution ladders and runtime "
-                                             "methods for every table a scene calls for (Markdown, CSV, SVG)");
+    auto *cmd = app.add_subcommand("report", "What accuracy costs in time: tolerance and resolution ladders, runtime "
+                                             "methods and the GPU snippets' tiers for every table a scene calls for "
+                                             "(Markdown, CSV, SVG)");
     cmd->add_option("--scene", opt->scene_file, "Scene file (TOML); default: the embedded default scene")
         ->check(CLI::ExistingFile);
     cmd->add_option("--out", opt->out_dir, "Directory for report.md and the CSV and SVG files")
@@ -129,6 +163,13 @@ void setup_report(CLI::App &app, int &exit_code, const std::string &command_line
         ->capture_default_str();
     add_integer_option(cmd, "--queries", opt->queries, "Random radiance queries over the scene's domain per table", 100,
                        1000000)
+        ->capture_default_str();
+    cmd->add_flag("--no-gpu", opt->no_gpu,
+                  "Skip the GPU section's measurement (the snippets' tiers drawn through EGL/OpenGL; the section "
+                  "then says it was not measured)");
+    add_integer_option(cmd, "--gpu-pixels", opt->gpu_pixels,
+                       "GPU section: pixels per frame at least (each table's queries repeated to fill them)", 1,
+                       16777216)
         ->capture_default_str();
     cmd->callback([opt, &exit_code, &command_line] { exit_code = run_report(*opt, command_line); });
 }

@@ -23,8 +23,7 @@ struct ErrorStats {
     size_t points = 0;
 };
 
-
-// Median, p90, p99 and max of `err` (relative errors).
+// Median, p90, p99 and max of relative errors (+inf counts as the largest).
 ErrorStats error_stats(const std::vector<double> &err);
 
 // Runs every job `rounds` times, interleaved (job 0, 1, …, 0, 1, …), so that the machine's

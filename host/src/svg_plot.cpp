@@ -209,7 +209,12 @@ std::string text_element(const Label &l) {
 } // namespace
 
 std::string render_svg(const Plot &plot, int width_px, int height_px) {
-    const double left = 78, right = 190, top = 40, bottom = 58; // margins; legend on the right
+    // Margins; the legend on the right, its texts from 40 px right of the plot area: the
+    // picture grows (the plot area keeps its width) where a legend text needs more than 190 px.
+    const double left = 78, top = 40, bottom = 58;
+    double right = 190;
+    for (const auto &s : plot.series) right = std::max(right, 40.0 + text_width_px(s.label, 12) + 10.0);
+    width_px += static_cast<int>(std::ceil(right - 190));
     Scale sx, sy;
     sx.log = plot.log_x;
     sy.log = plot.log_y;
@@ -468,13 +473,17 @@ std::string render_svg(const Plot &plot, int width_px, int height_px) {
         for (const Spot &sp : spots[k]) {
             if (!sp.drawn) continue;
             if (sp.clipped()) o << clipped_triangle(sp, sx, sy, colour);
+            else if (s.hollow)
+                o << "<circle cx=\"" << px(sp.x) << "\" cy=\"" << px(sp.y) << "\" r=\"" << fmt("%g", kPointRadius)
+                  << "\" fill=\"#ffffff\" stroke=\"" << colour << "\" stroke-width=\"1.5\"/>\n";
             else
                 o << "<circle cx=\"" << px(sp.x) << "\" cy=\"" << px(sp.y) << "\" r=\"" << fmt("%g", kPointRadius)
                   << "\" fill=\"" << colour << "\"/>\n";
         }
         const double ly = top + 14 + 18.0 * static_cast<double>(k);
         o << "<line x1=\"" << px(sx.p1 + 14) << "\" y1=\"" << px(ly - 4) << "\" x2=\"" << px(sx.p1 + 34) << "\" y2=\""
-          << px(ly - 4) << "\" stroke=\"" << colour << "\" stroke-width=\"2.5\"/>\n";
+          << px(ly - 4) << "\" stroke=\"" << colour << "\" stroke-width=\"2.5\""
+          << (s.dashed ? " stroke-dasharray=\"3 3\"" : "") << "/>\n";
         o << "<text x=\"" << px(sx.p1 + 40) << "\" y=\"" << px(ly) << "\">" << escape_xml(s.label) << "</text>\n";
     }
     for (const Spot &s : ring_spots)

@@ -19,6 +19,7 @@ struct PlotSeries {
     std::vector<std::string> point_labels; // empty, or one small label per point
     bool line = true;                    // join the points; markers are always drawn
     bool dashed = false;
+    bool hollow = false;                 // markers as rings (white inside), to tell one kind of series from another
 };
 
 // A point drawn on top of the series, with its label beside it (e.g. "planned").

@@ -14,8 +14,16 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <stdlib.h>
 
 #include "cli_runner.hpp"
+
+#ifndef SLUT_REPORT_HAVE_EGL
+#define SLUT_REPORT_HAVE_EGL 0
+#endif
+#ifndef SLUT_REQUIRE_SHADER_TESTS
+#define SLUT_REQUIRE_SHADER_TESTS 0
+#endif
 
 namespace {
 
@@ -239,6 +247,144 @@ TEST(Report, AnisotropicNearLightLaddersHoldTheScenesError) {
         EXPECT_NE(md.find("## " + kind), std::string::npos) << md;
     }
     EXPECT_NE(md.find("forward_near_light.toml"), std::string::npos) << "the report names the command that produced it";
+}
+
+// ---------------------------------------------------------------- the GPU section
+
+// The section of report.md from its heading on ("" if absent).
+std::string gpu_section(const std::string &dir) {
+    const std::string md = read_file(dir + "/report.md");
+    const size_t at = md.find("\n## On the GPU: the snippets' tiers\n");
+    return at == std::string::npos ? std::string() : md.substr(at);
+}
+
+// GPU rows and CPU rows of <table>_gpu.csv files, by name (a GPU tier's name is its tier, made
+// unique by its table: "fast airlight_rational").
+struct GpuRows {
+    std::map<std::string, Row> gpu, cpu;
+    void add(const std::string &csv) {
+        for (const Row &r : read_csv(csv)) {
+            if (r.at("side") == "gpu") gpu[r.at("method") + (r.at("table") == "-" ? "" : " " + r.at("table"))] = r;
+            else cpu[r.at("method")] = r;
+        }
+    }
+};
+GpuRows gpu_rows(const std::string &csv) {
+    GpuRows out;
+    out.add(csv);
+    return out;
+}
+
+// Whether the section was measured; a report that could not draw at all (no EGL context: the
+// section says so before its first table) skips the test (it fails where the build asked for the
+// shader tests, SCATTERLUT_REQUIRE_SHADER_TESTS). A table that could not be drawn in a measured
+// section (a shader that does not compile, say) is a failure: its rows are missing.
+#define SLUT_GPU_SECTION_OR_SKIP(dir)                                                                                  \
+    do {                                                                                                               \
+        const std::string section = gpu_section(dir);                                                                  \
+        ASSERT_FALSE(section.empty()) << (dir) << ": report.md has no GPU section";                                    \
+        const size_t not_measured = section.find("**Not measured:**");                                                 \
+        if (not_measured != std::string::npos && not_measured < section.find("\n### ")) {                              \
+            const std::string why = section.substr(not_measured, section.find('\n', not_measured) - not_measured);     \
+            if (SLUT_REPORT_HAVE_EGL && SLUT_REQUIRE_SHADER_TESTS) FAIL() << why;                                      \
+            GTEST_SKIP() << why;                                                                                       \
+        }                                                                                                              \
+    } while (0)
+
+// Every tier of `tiers` of table `table`: finite positive costs, finite errors within the
+// scene's accepted error, and the same errors as the C++ runtime on the same table (`cpu_table`,
+// its CPU row): the snippet samples as the runtime does, in float (docs/SHADERS.md: ~1e-5).
+void expect_tiers(const GpuRows &rows, const std::string &table, const std::vector<std::string> &tiers,
+                  const std::string &cpu_table, double accepted) {
+    ASSERT_TRUE(rows.cpu.count(cpu_table)) << cpu_table;
+    const double cpu_max = num(rows.cpu.at(cpu_table), "max_rel"), cpu_median = num(rows.cpu.at(cpu_table), "median_rel");
+    for (const std::string &tier : tiers) {
+        const std::string key = tier + " " + table;
+        SCOPED_TRACE(key);
+        ASSERT_TRUE(rows.gpu.count(key)) << "no GPU row for tier " << tier << " of " << table;
+        const Row &r = rows.gpu.at(key);
+        EXPECT_EQ(r.at("tier"), tier);
+        EXPECT_TRUE(std::isfinite(num(r, "ns")));
+        EXPECT_GT(num(r, "ns_per_pixel_frame"), 0.0);
+        EXPECT_GT(num(r, "ratio_to_baseline"), 0.0);
+        EXPECT_GT(num(r, "queries"), 100.0);
+        for (const char *key_rel : {"median_rel", "p99_rel", "max_rel"}) EXPECT_TRUE(std::isfinite(num(r, key_rel))) << key_rel;
+        EXPECT_LE(num(r, "max_rel"), accepted);
+        EXPECT_NEAR(num(r, "max_rel"), cpu_max, 0.05 * cpu_max + 2e-5);
+        EXPECT_NEAR(num(r, "median_rel"), cpu_median, 0.05 * cpu_median + 2e-5);
+    }
+}
+
+// fog_street.toml plans airlight_F and airlight_rational (the airlight snippet: no tier on the
+// first, fast and accurate on the second, over the same queries, one group) and the surface
+// tables of exponents 1 and 50 (the surface snippet, each in every tier). Every tier holds the
+// scene's accepted error (0.005) with the C++ runtime's error; the airlight tiers hold the fast
+// tier's radiance target of docs/SHADERS.md ("Tiers": sized for 1e-3); Sun et al. 2005's
+// two-fetch form on its plain 64 x 64 F table and the engines' closed form are further off.
+TEST(Report, GpuSectionDrawsEveryTierOfTheAirlightAndSurfaceTables) {
+    SLUT_GPU_SECTION_OR_SKIP(fog_report());
+    const GpuRows rows = gpu_rows(fog_report() + "/airlight_F_gpu.csv");
+    ASSERT_FALSE(fs::exists(fog_report() + "/airlight_rational_gpu.csv")) << "one group for the airlight snippet";
+    GpuRows diffuse = gpu_rows(fog_report() + "/surface_G0_gpu.csv");
+    expect_tiers(rows, "airlight_F", {"none"}, "table (airlight_F)", 0.005);
+    expect_tiers(rows, "airlight_rational", {"fast", "accurate"}, "table (airlight_rational)", 0.005);
+    expect_tiers(diffuse, "surface_G0", {"fast", "accurate", "none"}, "table", 0.005);
+    for (const char *tier : {"fast airlight_rational", "accurate airlight_rational", "none airlight_F"}) {
+        ASSERT_TRUE(rows.gpu.count(tier)) << tier;
+        EXPECT_LE(num(rows.gpu.at(tier), "max_rel"), 1e-3) << tier;
+    }
+    ASSERT_TRUE(rows.gpu.count("sun2005") && rows.gpu.count("closed"));
+    EXPECT_GT(num(rows.gpu.at("sun2005"), "max_rel"), 10 * num(rows.gpu.at("fast airlight_rational"), "max_rel"));
+    EXPECT_GT(num(rows.gpu.at("closed"), "median_rel"), 10 * num(rows.gpu.at("fast airlight_rational"), "median_rel"));
+    EXPECT_EQ(num(rows.gpu.at("sun2005"), "ratio_to_baseline"), 1.0) << "the airlight's baseline";
+    // The Phong table's group: its own file, its own queries' exact S_n.
+    expect_tiers(gpu_rows(fog_report() + "/surface_G50_gpu.csv"), "surface_G50", {"fast", "accurate", "none"}, "table", 0.005);
+    for (const char *svg : {"/airlight_F_gpu.svg", "/surface_G0_gpu.svg", "/surface_G50_gpu.svg"}) expect_svg(fog_report() + svg);
+    const std::string section = gpu_section(fog_report());
+    EXPECT_NE(section.find("### airlight_F, airlight_rational (`scatterlut_airlight.glsl`)"), std::string::npos) << section;
+    EXPECT_NE(section.find("llvmpipe"), std::string::npos) << "the section says what drew";
+}
+
+// The near-light tables in every tier of their snippet (candle_wax.toml: E3; forward_near_light.toml:
+// E3 and E4 with a Henyey-Greenstein phase), each with the thin-medium form as the baseline.
+TEST(Report, GpuSectionDrawsEveryTierOfTheNearLightTables) {
+    SLUT_GPU_SECTION_OR_SKIP(candle_report());
+    const GpuRows candle = gpu_rows(candle_report() + "/near_light_E3_gpu.csv");
+    expect_tiers(candle, "near_light_E3", {"fast", "accurate", "none"}, "table", 0.02);
+    ASSERT_TRUE(candle.gpu.count("thin") && candle.gpu.count("fast near_light_E3"));
+    EXPECT_EQ(num(candle.gpu.at("thin"), "ratio_to_baseline"), 1.0);
+    EXPECT_GT(num(candle.gpu.at("thin"), "max_rel"), 10 * num(candle.gpu.at("fast near_light_E3"), "max_rel"));
+    expect_svg(candle_report() + "/near_light_E3_gpu.svg");
+    for (const std::string kind : {"near_light_E3_hg_g0.8", "near_light_E4_hg_g0.6"}) {
+        expect_tiers(gpu_rows(forward_near_light_report() + "/" + kind + "_gpu.csv"), kind, {"fast", "accurate", "none"}, "table", 0.03);
+        expect_svg(forward_near_light_report() + "/" + kind + "_gpu.svg");
+    }
+}
+
+// Without a GPU measurement the report still succeeds and says why: --no-gpu, and a run where
+// EGL offers no surfaceless platform (glvnd finds no vendor library); no GPU files then.
+TEST(Report, GpuSectionSaysWhyItWasNotMeasured) {
+    const std::string d = slut_test::temp_stem("report_no_gpu");
+    const std::string args = "report --scene " + kScenes + "candle_wax.toml --out " + d + " --rounds 1 --queries 200";
+    fs::remove_all(d);
+    auto r = slut_test::run_scatterlut(args + " --no-gpu");
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    std::string section = gpu_section(d);
+    EXPECT_NE(section.find("**Not measured:** the run was given --no-gpu."), std::string::npos) << section;
+    EXPECT_NE(section.find("- near_light_E3 (scatterlut_nearlight.glsl)"), std::string::npos) << section;
+    EXPECT_FALSE(fs::exists(d + "/near_light_E3_gpu.csv"));
+
+    fs::remove_all(d);
+    setenv("__EGL_VENDOR_LIBRARY_FILENAMES", (d + "_no_vendor.json").c_str(), 1); // no EGL driver
+    r = slut_test::run_scatterlut(args);
+    unsetenv("__EGL_VENDOR_LIBRARY_FILENAMES");
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    section = gpu_section(d);
+    const std::string why = SLUT_REPORT_HAVE_EGL ? "**Not measured:** no OpenGL 4.3 context through EGL: "
+                                                 : "**Not measured:** this scatterlut was built without the EGL";
+    EXPECT_NE(section.find(why), std::string::npos) << section;
+    EXPECT_FALSE(fs::exists(d + "/near_light_E3_gpu.csv"));
+    fs::remove_all(d);
 }
 
 TEST(Report, SceneWithoutTablesSaysSo) {

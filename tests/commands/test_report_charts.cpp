@@ -1,5 +1,6 @@
-// `scatterlut report`'s charts read as a person reads them: on every example scene
-// (examples/scenes/*.toml, one test each) the report is run as the built executable and every
+// `scatterlut report`'s charts read as a person reads them (the ladders' and the GPU
+// section's): on every example scene (examples/scenes/*.toml, one test each) the report is
+// run as the built executable and every
 // SVG it writes is checked with tests/host/chart_check.hpp: no text over another text or over
 // a marker, no data label or marker outside the plot area, the axes' and legend's texts
 // inside the picture. The labels' boxes are the generator's own estimate (text_box in
@@ -39,13 +40,18 @@ std::string read_file(const fs::path &path) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// Every data row's first field of a CSV (the report writes no quoting).
-std::vector<std::string> first_column(const fs::path &csv) {
+// Every data row's field `k` (0: the first) of a CSV (the report writes no quoting).
+std::vector<std::string> column(const fs::path &csv, size_t k = 0) {
     std::vector<std::string> out;
     std::istringstream in(read_file(csv));
     std::string line;
     std::getline(in, line); // header
-    while (std::getline(in, line)) out.push_back(line.substr(0, line.find(',')));
+    while (std::getline(in, line)) {
+        std::istringstream fields(line);
+        std::string field;
+        for (size_t i = 0; i <= k && std::getline(fields, field, ','); ++i) {}
+        out.push_back(field);
+    }
     return out;
 }
 
@@ -89,13 +95,23 @@ TEST_P(ReportCharts, NoLabelOverAnotherNorOutsideThePlot) {
         for (const auto &t : chart.texts) all_text += t.content + "\n";
         if (name.size() > 15 && name.substr(name.size() - 15) == "_resolution.svg") {
             const fs::path csv = stem.string() + ".csv";
-            for (const std::string &counts : first_column(csv))
+            for (const std::string &counts : column(csv))
                 EXPECT_NE(all_text.find(counts), std::string::npos) << counts;
         }
         if (name.size() > 12 && name.substr(name.size() - 12) == "_methods.svg") {
             const fs::path csv = stem.string() + ".csv";
-            for (const std::string &method : first_column(csv))
+            for (const std::string &method : column(csv))
                 EXPECT_NE(all_text.find(method), std::string::npos) << method;
+        }
+        // The GPU section's chart (<table>_gpu.svg): every CPU method and GPU row of its CSV.
+        if (name.size() > 8 && name.substr(name.size() - 8) == "_gpu.svg") {
+            const fs::path csv = stem.string() + ".csv";
+            const std::vector<std::string> sides = column(csv, 0), methods = column(csv, 1);
+            ASSERT_EQ(sides.size(), methods.size());
+            for (size_t i = 0; i < methods.size(); ++i)
+                EXPECT_NE(all_text.find(methods[i] == "exact" ? "CPU exact" : (sides[i] == "gpu" ? "GPU " : "CPU ") + methods[i]),
+                          std::string::npos)
+                    << sides[i] << " " << methods[i];
         }
         EXPECT_NE(all_text.find("planned"), std::string::npos);
     }

@@ -174,3 +174,27 @@ TEST(ChartLabels, MarkersOnTheAxisEndsStayInside) {
     }
     EXPECT_NE(svg.find(">1e-15<"), std::string::npos) << "the decade ticks stay";
 }
+
+// The legend's texts stay inside the picture however long (the picture grows, the plot area
+// keeps its width: the same chart with short labels keeps its size), and a hollow series
+// (the report's GPU rows) draws its markers as rings, with a dashed line in the legend.
+TEST(ChartLabels, LongLegendTextsWidenThePictureAndHollowSeriesAreRings) {
+    Plot p;
+    p.x_label = "x";
+    p.y_label = "y";
+    PlotSeries cpu, gpu;
+    cpu.label = "CPU short";
+    cpu.points = {{1, 1}, {2, 2}};
+    gpu.label = "GPU a legend text much longer than the 150 px a legend had";
+    gpu.points = {{1, 2}, {2, 3}};
+    gpu.hollow = gpu.dashed = true;
+    p.series = {cpu, gpu};
+    const std::string svg = scatterlut::render_svg(p);
+    const chart_check::Chart c = chart_check::parse(svg);
+    EXPECT_GT(c.width, 760.0);
+    EXPECT_EQ(chart_check::check(c).total(), 0u) << svg;
+    EXPECT_EQ(count(svg, "fill=\"#ffffff\" stroke="), 2u) << "the hollow series' two rings";
+    EXPECT_EQ(count(svg, "stroke-dasharray=\"3 3\""), 2u) << "its line and its legend";
+    p.series[1].label = "GPU short";
+    EXPECT_EQ(chart_check::parse(scatterlut::render_svg(p)).width, 760.0);
+}

@@ -20,9 +20,28 @@
 #include "scatterlut/airlight_hg.hpp"
 #include "scatterlut/spot.hpp"
 
+extern "C" {
+#include "slut_airlight.h" // slut_F_quadrature: Sun et al. 2005's F for the GPU baseline's table
+}
+
 namespace scatterlut {
 
 namespace {
+
+// Sun et al. 2005's plain F(u, v) table as the GPU baseline samples it (bench/shaders/sun2005.glsl,
+// the layout of NVIDIA's SDK 10 Rain sample): 64 x 64, u in [0, 10], v in [0, pi/2], linear axes.
+constexpr int kSunFCount = 64;
+constexpr double kSunFUMax = 10.0;
+
+std::shared_ptr<const GpuTexture> sun2005_f_texture() {
+    auto t = std::make_shared<GpuTexture>();
+    t->width = t->height = kSunFCount;
+    for (int j = 0; j < kSunFCount; ++j)
+        for (int i = 0; i < kSunFCount; ++i)
+            t->texels.push_back(static_cast<float>(slut_F_quadrature(kSunFUMax * i / (kSunFCount - 1),
+                                                                     0.5 * SLUT_PI * j / (kSunFCount - 1))));
+    return t;
+}
 
 // The airlight radiance is σ_s/(4π)·I0·2e^{−σ_t D}/(D sin γ)·[a − b] with a = w2 G̃_g(u, w2)
 // and b = e^{−σ_t Δ} w1 G̃_g(u, w1); the runtime uses this difference only where b ≤ a/2
@@ -182,6 +201,63 @@ public:
                          false, [q](size_t k) { return airlight_radiance_no_extinction_attenuated((*q)[k]); }});
         }
         return m;
+    }
+    // The isotropic table: the airlight snippet without a tier (the airlight_F table as
+    // AirlightTable samples it; its tiers sample the airlight_rational table, whose kind adds
+    // them) and the per-pixel forms engines use. The anisotropic table: the HG snippet in every
+    // tier and its closed forms with the phase.
+    GpuSnippetMethods gpu_methods(const Table &table, const RadianceQueries &qs) const override {
+        const std::string args = kAirlightGpuArgs;
+        if (!kAnisotropic) {
+            GpuSnippetMethods g = airlight_gpu_inputs(this->queries_of(qs), "scatterlut_airlight.glsl");
+            const std::string metadata = "SlutAirlightTable slut_planned_table() {\n    SlutAirlightTable t;\n    t.u = " +
+                                         glsl_axis(table.axes[0]) + ";\n    t.w = " + glsl_axis(table.axes[1]) +
+                                         ";\n    return t;\n}\n";
+            g.methods.push_back(gpu_tier_method("none", "no tier: the planned airlight_F table, texel fetches (as AirlightTable)",
+                                                g.snippet, "sampler2D", gpu_table_texture(table), metadata,
+                                                "slut_airlight_radiance(slut_table, slut_planned_table(), " + args + ")"));
+            GpuMethod sun;
+            sun.name = "sun2005";
+            sun.what = "Sun et al. 2005's two-fetch form on a plain 64x64 F(u, v) table (u <= 10, linear axes, "
+                       "bench/shaders/sun2005.glsl)";
+            sun.source = "sun2005.glsl";
+            sun.call = "sun2005(" + args + ")";
+            sun.texture = sun2005_f_texture();
+            sun.uniforms = {{"f_u_max", static_cast<float>(kSunFUMax)}};
+            GpuMethod closed;
+            closed.name = "closed";
+            closed.what = "closed form without extinction times e^(-sigma_t D), Macklin 2010 (bench/shaders/closed_form.glsl; "
+                          "an infinite ray as 1e30 m: the form takes a finite length)";
+            closed.source = "closed_form.glsl";
+            closed.call = "closed_form_attenuated(in0.x, in0.y, in0.z, in0.w, in1.x, in1.y, min(in1.z, 1e30))";
+            g.methods.push_back(sun);
+            g.methods.push_back(closed);
+            g.baseline = "sun2005";
+            return g;
+        }
+        GpuSnippetMethods g = airlight_gpu_inputs(this->queries_of(qs), "scatterlut_airlight_hg.glsl");
+        const std::string phase_g = glsl_float(airlight_table_phase_g(table));
+        const std::string metadata = "SlutAirlightHgTable slut_planned_table() {\n    return slut_airlight_hg_table(" +
+                                     glsl_axis(table.axes[0]) + ", " + glsl_axis(table.axes[1]) + ", " + phase_g +
+                                     ");\n}\n";
+        const std::string call = "slut_airlight_hg_radiance(slut_table, slut_planned_table(), " + args + ")";
+        const auto texture = gpu_table_texture(table);
+        g.methods.push_back(gpu_tier_method("fast", "SLUT_TIER_FAST: one hardware-filtered fetch per sample", g.snippet,
+                                            "sampler2D", texture, metadata, call));
+        g.methods.push_back(gpu_tier_method("accurate", "SLUT_TIER_ACCURATE: texel fetches, the bilinear in the shader",
+                                            g.snippet, "sampler2D", texture, metadata, call));
+        g.methods.push_back(gpu_tier_method("none", "no tier (as accurate): texel fetches, as AirlightHgTable", g.snippet,
+                                            "sampler2D", texture, metadata, call));
+        for (const char *form : {"thin", "distant"}) {
+            GpuMethod m;
+            m.name = form;
+            m.what = std::string("the snippet's closed form with the phase, no table (slut_airlight_hg_radiance_") + form + ")";
+            m.source = g.snippet;
+            m.call = std::string("slut_airlight_hg_radiance_") + form + "(" + args + ", " + phase_g + ")";
+            g.methods.push_back(m);
+        }
+        g.baseline = "thin";
+        return g;
     }
     const char *runtime_class() const override { return kAnisotropic ? "AirlightHgTable" : "AirlightTable"; }
     // Spots are served by the point light's table: the ray cut by the cone (docs/SPOT.md).

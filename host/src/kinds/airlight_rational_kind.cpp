@@ -104,6 +104,26 @@ public:
                  "(AirlightRationalTable::radiance)",
                  false, table_radiance(table, qs)}};
     }
+    // The airlight snippet's two tiers, which sample this table (the snippet without a tier
+    // samples airlight_F: that kind adds it, over the same queries).
+    GpuSnippetMethods gpu_methods(const Table &table, const RadianceQueries &qs) const override {
+        GpuSnippetMethods g = airlight_gpu_inputs(queries_of(qs), "scatterlut_airlight.glsl");
+        const std::string metadata = "SlutAirlightTable slut_planned_table() {\n    return slut_airlight_table(" +
+                                     std::to_string(table.axes[0].map.count) + ", " +
+                                     std::to_string(table.axes[1].map.count) + ");\n}\n";
+        const std::string call = "slut_airlight_radiance(slut_table, slut_planned_table(), " +
+                                 std::string(kAirlightGpuArgs) + ")";
+        const auto texture = gpu_table_texture(table);
+        g.methods.push_back(gpu_tier_method("fast",
+                                            "SLUT_TIER_FAST: the planned airlight_rational table, one hardware-filtered "
+                                            "fetch per end of the ray",
+                                            g.snippet, "sampler2D", texture, metadata, call));
+        g.methods.push_back(gpu_tier_method("accurate",
+                                            "SLUT_TIER_ACCURATE: the planned airlight_rational table, four texel fetches "
+                                            "per end, the bilinear in the shader",
+                                            g.snippet, "sampler2D", texture, metadata, call));
+        return g;
+    }
     const char *runtime_class() const override { return "AirlightRationalTable"; }
     const char *independent_reference() const override {
         return "Boost.Math Gauss-Kronrod 61 of H(u,t) over y; Boost.Math expint on the edge x_t = 1";

@@ -191,6 +191,59 @@ public:
     const char *runtime_class() const override { return kAnisotropic ? "NearLightHgTable" : "NearLightTable"; }
     std::string methods_note() const override { return ""; }
 
+    // The near-light snippet (the HG one for an anisotropic table) in every tier, and its
+    // closed forms (no table) as the GPU baselines.
+    GpuSnippetMethods gpu_methods(const Table &table, const RadianceQueries &qs) const override {
+        const std::vector<NearLightQuery> &queries = this->queries_of(qs);
+        GpuSnippetMethods g =
+            near_light_gpu_inputs(queries, kAnisotropic ? "scatterlut_nearlight_hg.glsl" : "scatterlut_nearlight.glsl");
+        std::string axes;
+        for (const Axis &a : table.axes) axes += (axes.empty() ? "" : ", ") + glsl_axis(a);
+        std::string base = std::string(finite_ ? "slut_near_light_table_e4(" : "slut_near_light_table_e3(") + axes + ")";
+        std::string phase_g, type = "SlutNearLightTable", radiance = "slut_near_light_radiance", closed = "slut_near_light_radiance_";
+        if constexpr (kAnisotropic) {
+            phase_g = glsl_float(NearLightHgTable(table).phase_g());
+            base = "slut_near_light_hg_table(" + base + ", " + phase_g + ")";
+            type = "SlutNearLightHgTable";
+            radiance = "slut_near_light_hg_radiance";
+            closed = "slut_near_light_hg_radiance_";
+        }
+        const std::string metadata = type + " slut_planned_table() {\n    return " + base + ";\n}\n";
+        const std::string args = kNearLightGpuArgs;
+        const std::string call = radiance + "(slut_table, slut_planned_table(), " + args + ")";
+        const auto texture = gpu_table_texture(table);
+        const std::string fetches = finite_ ? "two trilinear filtered fetches (E4: the two layers)" : "one trilinear filtered fetch";
+        g.methods.push_back(gpu_tier_method("fast", "SLUT_TIER_FAST: " + fetches, g.snippet, "sampler3D", texture,
+                                            metadata, call));
+        g.methods.push_back(gpu_tier_method("accurate", "SLUT_TIER_ACCURATE: texel fetches, the trilinear in the shader",
+                                            g.snippet, "sampler3D", texture, metadata, call));
+        g.methods.push_back(gpu_tier_method("none", std::string("no tier (as accurate): texel fetches, as ") + runtime_class(),
+                                            g.snippet, "sampler3D", texture, metadata, call));
+        for (const char *form : {"thin", "distant"}) {
+            GpuMethod m;
+            m.name = form;
+            m.what = std::string(form[0] == 't' ? "thin-medium closed form, Gath 2008 §4.2" : "distant-light limit, Gath 2008 eq. 5") +
+                     (kAnisotropic ? ", with the phase" : "") + " (" + closed + form + ", no table)";
+            m.source = g.snippet;
+            m.call = closed + form + "(" + (kAnisotropic ? phase_g + ", " : std::string()) + args + ")";
+            g.methods.push_back(m);
+        }
+        g.baseline = "thin";
+        // Where the table does not cover a query the C++ runtime integrates E exactly and a
+        // shader clamps to the table's edge (docs/SHADERS.md, "Outside the table's domain").
+        const Runtime runtime(table);
+        size_t outside = 0;
+        for (const NearLightQuery &q : queries) {
+            const NearLightParams p = near_light_params(q);
+            outside += !runtime.covers(p.T, p.g, p.r, p.S);
+        }
+        if (outside > 0)
+            g.notes.push_back(std::to_string(outside) + " of the " + std::to_string(queries.size()) +
+                              " queries lie outside the table's axes: there the shader returns E at the table's edge "
+                              "(the C++ runtime integrates exactly)");
+        return g;
+    }
+
 private:
     bool finite_;
 };

@@ -135,6 +135,27 @@ public:
         }
         return m;
     }
+    // The surface snippet in every tier: E_ss (or S_n) as SurfaceTable::specular forms it, the
+    // snippet's scale sigma_s I0/(4 pi D) (slut_surface_scattered_scale) times its G_n. The
+    // snippet has no closed form of its own: no GPU baseline; the costs are ratios to no tier.
+    GpuSnippetMethods gpu_methods(const Table &table, const RadianceQueries &qs) const override {
+        GpuSnippetMethods g = surface_gpu_inputs(queries_of(qs), "scatterlut_surface.glsl");
+        const std::string metadata = "SlutSurfaceTable slut_planned_table() {\n    return slut_surface_table(" +
+                                     glsl_axis(table.axes[0]) + ", " + glsl_axis(table.axes[1]) + ", " +
+                                     std::to_string(surface_table_exponent(table)) + ", 0);\n}\n";
+        // sigma_s in0.x, sigma_a in0.y, I0 in0.z, D in0.w, theta in1.x; T = sigma_t D.
+        const std::string call = "slut_surface_scattered_scale(in0.x, in0.z, in0.w) * slut_surface_G(slut_table, "
+                                 "slut_planned_table(), (in0.x + in0.y) * in0.w, in1.x)";
+        const auto texture = gpu_table_texture(table);
+        g.methods.push_back(gpu_tier_method("fast", "SLUT_TIER_FAST: one hardware-filtered fetch", g.snippet,
+                                            "sampler2D", texture, metadata, call));
+        g.methods.push_back(gpu_tier_method("accurate", "SLUT_TIER_ACCURATE: texel fetches, the bilinear in the shader",
+                                            g.snippet, "sampler2D", texture, metadata, call));
+        g.methods.push_back(gpu_tier_method("none", "no tier (as accurate): texel fetches, as SurfaceTable", g.snippet,
+                                            "sampler2D", texture, metadata, call));
+        g.baseline = "none";
+        return g;
+    }
     const char *runtime_class() const override { return "SurfaceTable"; }
     const char *independent_reference() const override {
         return "Boost.Math Gauss-Kronrod 31 over gamma, exp_sinh along each ray";

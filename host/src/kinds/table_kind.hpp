@@ -30,6 +30,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "gpu_methods.hpp"
 #include "kinds/runtime_kind.hpp"
 #include "measurement.hpp"
 #include "scatterlut/spot.hpp"
@@ -148,6 +149,12 @@ public:
     virtual std::optional<SpotServing> spot_serving(const Scene &, const std::any &, const Table &) const {
         return std::nullopt;
     }
+
+    // ------------------------------------------------ the report's GPU section
+    // The generated GLSL snippet that samples this table, in each tier it runs the table in,
+    // and the GPU baselines engines use, over `queries` as pixels (gpu_methods.hpp); an empty
+    // snippet where no snippet samples the table.
+    virtual GpuSnippetMethods gpu_methods(const Table &table, const RadianceQueries &queries) const = 0;
 
 };
 
