@@ -86,7 +86,8 @@ void push(std::vector<float> &v, std::initializer_list<double> values) {
 } // namespace
 
 GpuSnippetMethods airlight_gpu_inputs(const std::vector<AirlightQuery> &queries, const std::string &snippet) {
-    GpuSnippetMethods g = inputs_of(snippet, 2, "in0.x + in0.y + in0.z + in0.w + in1.x + in1.y + in1.z", queries.size());
+    GpuSnippetMethods g =
+        inputs_of(snippet, 2, "in0.x + in0.y + in0.z + in0.w + in1.x + in1.y + in1.z", queries.size());
     for (const AirlightQuery &q : queries) // gamma: view direction <-> direction viewer -> light
         push(g.inputs, {q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m, std::sin(q.gamma_rad),
                         std::cos(q.gamma_rad), q.length_m, 0.0});
@@ -108,8 +109,8 @@ GpuSnippetMethods near_light_gpu_inputs(const std::vector<NearLightQuery> &queri
 GpuSnippetMethods surface_gpu_inputs(const std::vector<SurfaceQuery> &queries, const std::string &snippet) {
     GpuSnippetMethods g = inputs_of(snippet, 2, "in0.x + in0.y + in0.z + in0.w + in1.x", queries.size());
     for (const SurfaceQuery &q : queries)
-        push(g.inputs, {q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m, q.theta_rad, 0.0, 0.0,
-                        0.0});
+        push(g.inputs,
+             {q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m, q.theta_rad, 0.0, 0.0, 0.0});
     return g;
 }
 

@@ -27,25 +27,25 @@ struct GpuTexture {
 
 // One way of computing the radiance per pixel.
 struct GpuMethod {
-    std::string name;   // "fast", "accurate", "none" (the snippet's tiers) or a baseline's name
-    std::string what;   // one line for the report
-    std::string tier;   // "fast", "accurate", "none"; "" for a baseline (no snippet tier)
-    std::string source; // the GLSL file it includes: a generated snippet or a baseline's file
-    std::string before; // GLSL before the source: the tier's define, the table's sampler
-    std::string after;  // GLSL after it (the table's metadata)
-    std::string call;   // the radiance, a float expression of the pixel's inputs in0, in1, …
-    std::shared_ptr<const GpuTexture> texture;            // on texture unit 0; null: none
+    std::string name;                          // "fast", "accurate", "none" (the snippet's tiers) or a baseline's name
+    std::string what;                          // one line for the report
+    std::string tier;                          // "fast", "accurate", "none"; "" for a baseline (no snippet tier)
+    std::string source;                        // the GLSL file it includes: a generated snippet or a baseline's file
+    std::string before;                        // GLSL before the source: the tier's define, the table's sampler
+    std::string after;                         // GLSL after it (the table's metadata)
+    std::string call;                          // the radiance, a float expression of the pixel's inputs in0, in1, …
+    std::shared_ptr<const GpuTexture> texture; // on texture unit 0; null: none
     std::vector<std::pair<std::string, float>> uniforms = {}; // float uniforms of the source
 };
 
 // A kind's methods for one table over its radiance queries.
 struct GpuSnippetMethods {
-    std::string snippet;      // the generated snippet, e.g. "scatterlut_airlight.glsl"; "": none
-    int vec4s = 0;            // inputs per query, in vec4
+    std::string snippet;       // the generated snippet, e.g. "scatterlut_airlight.glsl"; "": none
+    int vec4s = 0;             // inputs per query, in vec4
     std::vector<float> inputs; // vec4s × 4 floats per query, in the queries' order
-    std::string inputs_read;  // a float expression that reads every input (the inputs-only pass)
+    std::string inputs_read;   // a float expression that reads every input (the inputs-only pass)
     std::vector<GpuMethod> methods;
-    std::string baseline;     // the method the costs are given as ratios to ("" : the first)
+    std::string baseline;           // the method the costs are given as ratios to ("" : the first)
     std::vector<std::string> notes; // for the report, e.g. queries a shader clamps
 };
 

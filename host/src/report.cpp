@@ -84,7 +84,7 @@ int run_report(const ReportOptions &opt, const std::string &command_line) {
     md += "Device: " + device.info().describe() + ".\n";
     resolve_plan(plan, device, provenance, progress_line);
     const size_t max_bytes = static_cast<size_t>(scene.max_table_MiB * 1024.0 * 1024.0);
-    std::deque<RadianceQueries> all_queries;                  // kept for the GPU section
+    std::deque<RadianceQueries> all_queries;                   // kept for the GPU section
     std::map<std::string, std::vector<MethodRow>> all_methods; // table name → its CPU methods
     std::vector<GpuTableInput> gpu_inputs;
 
@@ -135,10 +135,11 @@ int run_report(const ReportOptions &opt, const std::string &command_line) {
     std::cout << "GPU: " << (gpu.measured ? gpu.renderer : gpu.why_not) << "\n";
     for (const GpuGroup &g : gpu.groups)
         if (gpu.measured)
-            std::cout << "  " << g.snippet << ": " << (g.why_not.empty() ? std::to_string(g.rows.size()) + " methods on " +
-                                                                          std::to_string(g.queries) + " queries"
-                                                                    : g.why_not)
-                  << "\n";
+            std::cout << "  " << g.snippet << ": "
+                      << (g.why_not.empty()
+                              ? std::to_string(g.rows.size()) + " methods on " + std::to_string(g.queries) + " queries"
+                              : g.why_not)
+                      << "\n";
     md += gpu_markdown(gpu, gpu_cpu_rows, scene.relative_error);
     write_text(opt.out_dir + "/report.md", md);
     std::cout << "wrote " << opt.out_dir << "/report.md\n";
@@ -168,8 +169,9 @@ void setup_report(CLI::App &app, int &exit_code, const std::string &command_line
                   "Skip the GPU section's measurement (the snippets' tiers drawn through EGL/OpenGL; the section "
                   "then says it was not measured)");
     add_integer_option(cmd, "--gpu-pixels", opt->gpu_pixels,
-                       "GPU section: pixels per frame at least (each table's queries repeated to fill them)", 1,
-                       16777216)
+                       "GPU section: pixels per frame at least (each table's queries repeated to fill them; more "
+                       "where the slowest method's frame is under 10 ms)",
+                       1, 1048576)
         ->capture_default_str();
     cmd->callback([opt, &exit_code, &command_line] { exit_code = run_report(*opt, command_line); });
 }

@@ -25,7 +25,8 @@ namespace {
 // Tables of the same snippet over the same pixels and the same exact radiance form one group (the
 // airlight snippet's two tables; not the surface tables of two exponents, whose queries coincide
 // but whose quantities differ), in the order of first appearance.
-std::vector<GpuGroup> group_tables(const std::vector<GpuTableInput> &tables, std::vector<std::vector<size_t>> *members) {
+std::vector<GpuGroup> group_tables(const std::vector<GpuTableInput> &tables,
+                                   std::vector<std::vector<size_t>> *members) {
     std::vector<GpuGroup> groups;
     for (size_t t = 0; t < tables.size(); ++t) {
         const GpuSnippetMethods &m = tables[t].methods;
@@ -66,7 +67,9 @@ const char *embedded_shader(const std::string &name) {
     return nullptr;
 }
 
-constexpr int kFrameWidth = 256; // pixels per row of the frame
+constexpr int kFrameWidth = 256;        // pixels per row of the frame
+constexpr double kTargetFrameMs = 10.0; // the slowest method's frame at least (else rows are added)
+constexpr int kMaxFrameRows = 4096;     // at most 2^20 pixels
 
 // Relative errors of the first exact.size() pixels of `image` (pixel k: query k); a result that
 // is not finite and ≥ 0 counts as +inf.
@@ -79,6 +82,45 @@ std::vector<double> pixel_errors(const std::vector<float> &image, const std::vec
     return e;
 }
 
+// The inputs of `rows` rows of kFrameWidth pixels: pixel i draws query i mod (the queries).
+std::vector<float> frame_inputs(const GpuSnippetMethods &m, int rows) {
+    const size_t per_query = static_cast<size_t>(m.vec4s) * 4, n = m.inputs.size() / per_query;
+    const size_t pixels = static_cast<size_t>(kFrameWidth) * static_cast<size_t>(rows);
+    std::vector<float> inputs(pixels * per_query);
+    for (size_t i = 0; i < pixels; ++i)
+        std::copy_n(m.inputs.begin() + static_cast<long>((i % n) * per_query), per_query,
+                    inputs.begin() + static_cast<long>(i * per_query));
+    return inputs;
+}
+
+// Frames of `methods` (built) in rounds on a frame of `rows` rows: the rows' figures; "" or why not.
+std::string time_and_read(const Gl &gl, const GpuSnippetMethods &first, const RadianceQueries &qs, int rows_count,
+                          std::vector<gpu_harness::Method> &methods, const GpuOptions &opt, const std::string &baseline,
+                          std::vector<GpuRow> &rows) {
+    gpu_harness::Passes passes(gl, kFrameWidth, rows_count, frame_inputs(first, rows_count));
+    if (!passes.complete()) return "the R32F render target is not complete";
+    const std::vector<std::vector<double>> round_ms = passes.time_rounds(methods, opt.rounds, opt.frames);
+    const double pixels = static_cast<double>(kFrameWidth) * rows_count;
+    const double inputs_ms = gpu_harness::median_of(round_ms.back());
+    size_t base = 0;
+    for (size_t m = 0; m < rows.size(); ++m)
+        if (rows[m].name == baseline) base = m;
+    for (size_t m = 0; m < rows.size(); ++m) {
+        const double ms = gpu_harness::median_of(round_ms[m]);
+        rows[m].ns_per_pixel_gross = ms * 1e6 / pixels;
+        rows[m].ns_per_pixel = (ms - inputs_ms) * 1e6 / pixels;
+        std::vector<double> ratios;
+        for (size_t r = 0; r < round_ms[m].size(); ++r) ratios.push_back(round_ms[m][r] / round_ms[base][r]);
+        rows[m].ratio = gpu_harness::median_of(ratios);
+        rows[m].ratio_min = *std::min_element(ratios.begin(), ratios.end());
+        rows[m].ratio_max = *std::max_element(ratios.begin(), ratios.end());
+        rows[m].error = error_stats(pixel_errors(passes.frame(methods[m]), qs.exact));
+    }
+    const GLenum gl_error = gl.glGetError();
+    return gl_error == GL_NO_ERROR ? ""
+                                   : "OpenGL error 0x" + gpu_harness::GpuContext::hex(static_cast<EGLint>(gl_error));
+}
+
 // Measures one group; sets why_not where it cannot.
 void measure_group(const Gl &gl, const std::vector<GpuTableInput> &tables, const std::vector<size_t> &members,
                    const GpuOptions &opt, GpuGroup &group) {
@@ -89,15 +131,10 @@ void measure_group(const Gl &gl, const std::vector<GpuTableInput> &tables, const
         group.why_not = "no radiance queries";
         return;
     }
+    // The frame: whole rows of kFrameWidth pixels, at least the queries and opt.min_pixels.
     const size_t pixels_wanted = std::max(n, opt.min_pixels);
-    group.width = static_cast<int>(std::min<size_t>(kFrameWidth, pixels_wanted));
-    group.height = static_cast<int>((pixels_wanted + static_cast<size_t>(group.width) - 1) / static_cast<size_t>(group.width));
-    const size_t pixels = static_cast<size_t>(group.width) * static_cast<size_t>(group.height);
-    const size_t per_query = static_cast<size_t>(first.vec4s) * 4;
-    std::vector<float> inputs(pixels * per_query);
-    for (size_t i = 0; i < pixels; ++i) // pixel i draws query i mod n
-        std::copy_n(first.inputs.begin() + static_cast<long>((i % n) * per_query), per_query,
-                    inputs.begin() + static_cast<long>(i * per_query));
+    group.width = kFrameWidth;
+    group.height = static_cast<int>(std::min<size_t>(kMaxFrameRows, (pixels_wanted + kFrameWidth - 1) / kFrameWidth));
 
     GLint max_2d = 0, max_3d = 0;
     gl.glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_2d);
@@ -107,6 +144,7 @@ void measure_group(const Gl &gl, const std::vector<GpuTableInput> &tables, const
     std::vector<GLuint> textures;
     for (size_t t : members)
         for (const GpuMethod &m : tables[t].methods.methods) {
+            if (!group.why_not.empty()) break;
             const char *source = embedded_shader(m.source);
             if (!source) {
                 group.why_not = "the GLSL file " + m.source + " is not embedded in this build";
@@ -155,31 +193,26 @@ void measure_group(const Gl &gl, const std::vector<GpuTableInput> &tables, const
         return;
     }
     {
-        gpu_harness::Passes passes(gl, group.width, group.height, inputs);
-        std::string error = passes.complete() ? passes.build(methods) : "the R32F render target is not complete";
+        // Build every program on the first frame, and time each (median of 3 frames): where the slowest
+        // is shorter than kTargetFrameMs (cheap snippets, whose frames the machine's jitter
+        // would swamp), the frame grows to it, up to kMaxFrameRows rows.
+        gpu_harness::Passes probe(gl, group.width, group.height, frame_inputs(first, group.height));
+        std::string error = probe.complete() ? probe.build(methods) : "the R32F render target is not complete";
         if (error.empty()) {
-            const std::vector<std::vector<double>> round_ms = passes.time_rounds(methods, opt.rounds, opt.frames);
-            const double inputs_ms = gpu_harness::median_of(round_ms.back());
-            size_t base = 0;
-            for (size_t m = 0; m < rows.size(); ++m)
-                if (rows[m].name == group.baseline) base = m;
-            group.baseline = rows[base].name;
-            for (size_t m = 0; m < rows.size(); ++m) {
-                const double ms = gpu_harness::median_of(round_ms[m]);
-                rows[m].ns_per_pixel_gross = ms * 1e6 / static_cast<double>(pixels);
-                rows[m].ns_per_pixel = (ms - inputs_ms) * 1e6 / static_cast<double>(pixels);
-                std::vector<double> ratios;
-                for (size_t r = 0; r < round_ms[m].size(); ++r) ratios.push_back(round_ms[m][r] / round_ms[base][r]);
-                rows[m].ratio = gpu_harness::median_of(ratios);
-                rows[m].ratio_min = *std::min_element(ratios.begin(), ratios.end());
-                rows[m].ratio_max = *std::max_element(ratios.begin(), ratios.end());
-                rows[m].error = error_stats(pixel_errors(passes.frame(methods[m]), qs.exact));
-            }
-            const GLenum gl_error = gl.glGetError();
-            if (gl_error != GL_NO_ERROR) error = "OpenGL error 0x" + gpu_harness::GpuContext::hex(static_cast<EGLint>(gl_error));
+            double slowest_ms = 0;
+            for (const auto &t : probe.time_rounds(methods, 1, 3))
+                slowest_ms = std::max(slowest_ms, t[0]); // median of 3
+            if (slowest_ms > 0 && slowest_ms < kTargetFrameMs)
+                group.height =
+                    std::min(kMaxFrameRows, static_cast<int>(std::ceil(group.height * kTargetFrameMs / slowest_ms)));
         }
+        if (error.empty()) error = time_and_read(gl, first, qs, group.height, methods, opt, group.baseline, rows);
         if (!error.empty()) group.why_not = error;
     }
+    size_t base = 0;
+    for (size_t m = 0; m < rows.size(); ++m)
+        if (rows[m].name == group.baseline) base = m;
+    if (!rows.empty()) group.baseline = rows[base].name;
     release();
     if (group.why_not.empty()) group.rows = std::move(rows);
 }

@@ -20,19 +20,19 @@
 namespace scatterlut {
 
 struct GpuOptions {
-    bool enabled = true;        // false: --no-gpu
-    int rounds = 5;             // interleaved rounds (the report's --rounds)
-    int frames = 3;             // frames per method and round (the round's figure: their median)
-    size_t min_pixels = 32768;  // each frame repeats the queries up to at least this many pixels
+    bool enabled = true;       // false: --no-gpu
+    int rounds = 5;            // interleaved rounds (the report's --rounds)
+    int frames = 3;            // frames per method and round (the round's figure: their median)
+    size_t min_pixels = 32768; // each frame repeats the queries up to at least this many pixels
 };
 
 // One method's figures.
 struct GpuRow {
     std::string name, what;
-    std::string tier;          // "fast", "accurate", "none"; "" for a baseline
-    std::string table;         // the planned table it samples ("" for a baseline without one)
-    double ns_per_pixel = 0;       // net of the inputs-only pass (median frame of rounds)
-    double ns_per_pixel_gross = 0; // the whole frame
+    std::string tier;                               // "fast", "accurate", "none"; "" for a baseline
+    std::string table;                              // the planned table it samples ("" for a baseline without one)
+    double ns_per_pixel = 0;                        // net of the inputs-only pass (median frame of rounds)
+    double ns_per_pixel_gross = 0;                  // the whole frame
     double ratio = 0, ratio_min = 0, ratio_max = 0; // per-round frame / the baseline's frame
     ErrorStats error;
 };
@@ -42,11 +42,11 @@ struct GpuRow {
 struct GpuGroup {
     std::vector<std::string> tables; // their names (file stems), the first names the group's files
     std::string snippet;
-    std::string baseline;            // the rows' ratio reference
+    std::string baseline; // the rows' ratio reference
     std::vector<std::string> notes;
     size_t queries = 0;
-    int width = 0, height = 0;       // the frame
-    std::string why_not;             // not measured (this group), else ""
+    int width = 0, height = 0; // the frame
+    std::string why_not;       // not measured (this group), else ""
     std::vector<GpuRow> rows;
 };
 
@@ -55,7 +55,7 @@ struct GpuSection {
     std::string why_not;   // when !measured: why, in words
     std::string renderer;  // GL_RENDERER | GL_VERSION, and LP_NUM_THREADS
     GpuOptions options;
-    double seconds = 0;    // the whole measurement, wall clock
+    double seconds = 0; // the whole measurement, wall clock
     std::vector<GpuGroup> groups;
 };
 

@@ -32,7 +32,8 @@ std::string or_dash(bool have, const std::string &text) { return have ? text : s
 
 std::string gpu_stem(const GpuGroup &g) { return g.tables.front() + "_gpu"; }
 
-std::vector<MethodRow> group_cpu_methods(const GpuGroup &g, const std::map<std::string, std::vector<MethodRow>> &by_table) {
+std::vector<MethodRow> group_cpu_methods(const GpuGroup &g,
+                                         const std::map<std::string, std::vector<MethodRow>> &by_table) {
     std::vector<MethodRow> out;
     bool have_reference = false;
     for (const std::string &t : g.tables) {
@@ -126,8 +127,10 @@ std::string gpu_markdown(const GpuSection &s, const std::vector<std::vector<Meth
           std::to_string(s.options.rounds) + " interleaved rounds of " + std::to_string(s.options.frames) +
           " frames each), and each frame's ratio to the group's baseline frame in the same round (median [min-max] of "
           "the rounds; a net figure near 0, or below, is within the noise of the inputs pass); the whole GPU "
-          "measurement took " + fmt("%.1f", s.seconds) + " s.\n\n";
-    md += "Renderer: " + s.renderer + ". **These GPU ns are llvmpipe, Mesa's rasterizer, on this machine's CPU: a "
+          "measurement took " +
+          fmt("%.1f", s.seconds) + " s.\n\n";
+    md += "Renderer: " + s.renderer +
+          ". **These GPU ns are llvmpipe, Mesa's rasterizer, on this machine's CPU: a "
           "relative measure between the GPU rows (and beside the CPU's ns per call, which are one C++ call each on "
           "the same CPU), not the cost on a GPU.** The error of the fast tier on llvmpipe is the accurate tier's: "
           "llvmpipe filters R32F with float weights, where most GPUs use 8-bit ones (docs/SHADERS.md, \"Options\"). "
@@ -145,7 +148,8 @@ std::string gpu_markdown(const GpuSection &s, const std::vector<std::vector<Meth
               fmt("%.3g", static_cast<double>(g.width) * g.height / static_cast<double>(g.queries)) +
               " pixels); errors on the first drawing of each\n";
         for (const std::string &n : g.notes) md += "- note: " + n + "\n";
-        md += "\n| side | method | what | ns | / " + g.baseline + " per frame | median | p99 | max |\n"
+        md += "\n| side | method | what | ns | / " + g.baseline +
+              " per frame | median | p99 | max |\n"
               "|---|---|---|---:|---:|---:|---:|---:|\n";
         for (const MethodRow &r : cpu[i]) {
             auto e = [&](double v) { return r.reference ? std::string("reference") : fmt("%.2e", v); };
@@ -154,9 +158,9 @@ std::string gpu_markdown(const GpuSection &s, const std::vector<std::vector<Meth
         }
         for (const GpuRow &r : g.rows)
             md += "| GPU | " + r.name + " | " + r.what + (r.table.empty() ? "" : "; samples " + r.table) + " | " +
-                  fmt("%.3g", r.ns_per_pixel) + " per pixel | " + fmt("%.2f", r.ratio) + " [" + fmt("%.2f", r.ratio_min) +
-                  "-" + fmt("%.2f", r.ratio_max) + "] | " + fmt("%.2e", r.error.median) + " | " +
-                  fmt("%.2e", r.error.p99) + " | " + fmt("%.2e", r.error.max) + " |\n";
+                  fmt("%.3g", r.ns_per_pixel) + " per pixel | " + fmt("%.2f", r.ratio) + " [" +
+                  fmt("%.2f", r.ratio_min) + "-" + fmt("%.2f", r.ratio_max) + "] | " + fmt("%.2e", r.error.median) +
+                  " | " + fmt("%.2e", r.error.p99) + " | " + fmt("%.2e", r.error.max) + " |\n";
     }
     md += "\nThe scene's accepted error is " + fmt("%.3g", accepted) + ".\n";
     return md;

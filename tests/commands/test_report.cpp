@@ -264,8 +264,10 @@ struct GpuRows {
     std::map<std::string, Row> gpu, cpu;
     void add(const std::string &csv) {
         for (const Row &r : read_csv(csv)) {
-            if (r.at("side") == "gpu") gpu[r.at("method") + (r.at("table") == "-" ? "" : " " + r.at("table"))] = r;
-            else cpu[r.at("method")] = r;
+            if (r.at("side") == "gpu")
+                gpu[r.at("method") + (r.at("table") == "-" ? "" : " " + r.at("table"))] = r;
+            else
+                cpu[r.at("method")] = r;
         }
     }
 };
@@ -297,7 +299,8 @@ GpuRows gpu_rows(const std::string &csv) {
 void expect_tiers(const GpuRows &rows, const std::string &table, const std::vector<std::string> &tiers,
                   const std::string &cpu_table, double accepted) {
     ASSERT_TRUE(rows.cpu.count(cpu_table)) << cpu_table;
-    const double cpu_max = num(rows.cpu.at(cpu_table), "max_rel"), cpu_median = num(rows.cpu.at(cpu_table), "median_rel");
+    const double cpu_max = num(rows.cpu.at(cpu_table), "max_rel"),
+                 cpu_median = num(rows.cpu.at(cpu_table), "median_rel");
     for (const std::string &tier : tiers) {
         const std::string key = tier + " " + table;
         SCOPED_TRACE(key);
@@ -308,7 +311,8 @@ void expect_tiers(const GpuRows &rows, const std::string &table, const std::vect
         EXPECT_GT(num(r, "ns_per_pixel_frame"), 0.0);
         EXPECT_GT(num(r, "ratio_to_baseline"), 0.0);
         EXPECT_GT(num(r, "queries"), 100.0);
-        for (const char *key_rel : {"median_rel", "p99_rel", "max_rel"}) EXPECT_TRUE(std::isfinite(num(r, key_rel))) << key_rel;
+        for (const char *key_rel : {"median_rel", "p99_rel", "max_rel"})
+            EXPECT_TRUE(std::isfinite(num(r, key_rel))) << key_rel;
         EXPECT_LE(num(r, "max_rel"), accepted);
         EXPECT_NEAR(num(r, "max_rel"), cpu_max, 0.05 * cpu_max + 2e-5);
         EXPECT_NEAR(num(r, "median_rel"), cpu_median, 0.05 * cpu_median + 2e-5);
@@ -338,10 +342,13 @@ TEST(Report, GpuSectionDrawsEveryTierOfTheAirlightAndSurfaceTables) {
     EXPECT_GT(num(rows.gpu.at("closed"), "median_rel"), 10 * num(rows.gpu.at("fast airlight_rational"), "median_rel"));
     EXPECT_EQ(num(rows.gpu.at("sun2005"), "ratio_to_baseline"), 1.0) << "the airlight's baseline";
     // The Phong table's group: its own file, its own queries' exact S_n.
-    expect_tiers(gpu_rows(fog_report() + "/surface_G50_gpu.csv"), "surface_G50", {"fast", "accurate", "none"}, "table", 0.005);
-    for (const char *svg : {"/airlight_F_gpu.svg", "/surface_G0_gpu.svg", "/surface_G50_gpu.svg"}) expect_svg(fog_report() + svg);
+    expect_tiers(gpu_rows(fog_report() + "/surface_G50_gpu.csv"), "surface_G50", {"fast", "accurate", "none"}, "table",
+                 0.005);
+    for (const char *svg : {"/airlight_F_gpu.svg", "/surface_G0_gpu.svg", "/surface_G50_gpu.svg"})
+        expect_svg(fog_report() + svg);
     const std::string section = gpu_section(fog_report());
-    EXPECT_NE(section.find("### airlight_F, airlight_rational (`scatterlut_airlight.glsl`)"), std::string::npos) << section;
+    EXPECT_NE(section.find("### airlight_F, airlight_rational (`scatterlut_airlight.glsl`)"), std::string::npos)
+        << section;
     EXPECT_NE(section.find("llvmpipe"), std::string::npos) << "the section says what drew";
 }
 
@@ -356,7 +363,8 @@ TEST(Report, GpuSectionDrawsEveryTierOfTheNearLightTables) {
     EXPECT_GT(num(candle.gpu.at("thin"), "max_rel"), 10 * num(candle.gpu.at("fast near_light_E3"), "max_rel"));
     expect_svg(candle_report() + "/near_light_E3_gpu.svg");
     for (const std::string kind : {"near_light_E3_hg_g0.8", "near_light_E4_hg_g0.6"}) {
-        expect_tiers(gpu_rows(forward_near_light_report() + "/" + kind + "_gpu.csv"), kind, {"fast", "accurate", "none"}, "table", 0.03);
+        expect_tiers(gpu_rows(forward_near_light_report() + "/" + kind + "_gpu.csv"), kind,
+                     {"fast", "accurate", "none"}, "table", 0.03);
         expect_svg(forward_near_light_report() + "/" + kind + "_gpu.svg");
     }
 }

@@ -49,7 +49,8 @@ std::vector<std::string> column(const fs::path &csv, size_t k = 0) {
     while (std::getline(in, line)) {
         std::istringstream fields(line);
         std::string field;
-        for (size_t i = 0; i <= k && std::getline(fields, field, ','); ++i) {}
+        for (size_t i = 0; i <= k && std::getline(fields, field, ','); ++i) {
+        }
         out.push_back(field);
     }
     return out;
@@ -95,13 +96,11 @@ TEST_P(ReportCharts, NoLabelOverAnotherNorOutsideThePlot) {
         for (const auto &t : chart.texts) all_text += t.content + "\n";
         if (name.size() > 15 && name.substr(name.size() - 15) == "_resolution.svg") {
             const fs::path csv = stem.string() + ".csv";
-            for (const std::string &counts : column(csv))
-                EXPECT_NE(all_text.find(counts), std::string::npos) << counts;
+            for (const std::string &counts : column(csv)) EXPECT_NE(all_text.find(counts), std::string::npos) << counts;
         }
         if (name.size() > 12 && name.substr(name.size() - 12) == "_methods.svg") {
             const fs::path csv = stem.string() + ".csv";
-            for (const std::string &method : column(csv))
-                EXPECT_NE(all_text.find(method), std::string::npos) << method;
+            for (const std::string &method : column(csv)) EXPECT_NE(all_text.find(method), std::string::npos) << method;
         }
         // The GPU section's chart (<table>_gpu.svg): every CPU method and GPU row of its CSV.
         if (name.size() > 8 && name.substr(name.size() - 8) == "_gpu.svg") {
@@ -109,7 +108,8 @@ TEST_P(ReportCharts, NoLabelOverAnotherNorOutsideThePlot) {
             const std::vector<std::string> sides = column(csv, 0), methods = column(csv, 1);
             ASSERT_EQ(sides.size(), methods.size());
             for (size_t i = 0; i < methods.size(); ++i)
-                EXPECT_NE(all_text.find(methods[i] == "exact" ? "CPU exact" : (sides[i] == "gpu" ? "GPU " : "CPU ") + methods[i]),
+                EXPECT_NE(all_text.find(methods[i] == "exact" ? "CPU exact"
+                                                              : (sides[i] == "gpu" ? "GPU " : "CPU ") + methods[i]),
                           std::string::npos)
                     << sides[i] << " " << methods[i];
         }

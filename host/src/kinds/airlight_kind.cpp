@@ -38,8 +38,8 @@ std::shared_ptr<const GpuTexture> sun2005_f_texture() {
     t->width = t->height = kSunFCount;
     for (int j = 0; j < kSunFCount; ++j)
         for (int i = 0; i < kSunFCount; ++i)
-            t->texels.push_back(static_cast<float>(slut_F_quadrature(kSunFUMax * i / (kSunFCount - 1),
-                                                                     0.5 * SLUT_PI * j / (kSunFCount - 1))));
+            t->texels.push_back(static_cast<float>(
+                slut_F_quadrature(kSunFUMax * i / (kSunFCount - 1), 0.5 * SLUT_PI * j / (kSunFCount - 1))));
     return t;
 }
 
@@ -210,12 +210,13 @@ public:
         const std::string args = kAirlightGpuArgs;
         if (!kAnisotropic) {
             GpuSnippetMethods g = airlight_gpu_inputs(this->queries_of(qs), "scatterlut_airlight.glsl");
-            const std::string metadata = "SlutAirlightTable slut_planned_table() {\n    SlutAirlightTable t;\n    t.u = " +
-                                         glsl_axis(table.axes[0]) + ";\n    t.w = " + glsl_axis(table.axes[1]) +
-                                         ";\n    return t;\n}\n";
-            g.methods.push_back(gpu_tier_method("none", "no tier: the planned airlight_F table, texel fetches (as AirlightTable)",
-                                                g.snippet, "sampler2D", gpu_table_texture(table), metadata,
-                                                "slut_airlight_radiance(slut_table, slut_planned_table(), " + args + ")"));
+            const std::string metadata =
+                "SlutAirlightTable slut_planned_table() {\n    SlutAirlightTable t;\n    t.u = " +
+                glsl_axis(table.axes[0]) + ";\n    t.w = " + glsl_axis(table.axes[1]) + ";\n    return t;\n}\n";
+            g.methods.push_back(
+                gpu_tier_method("none", "no tier: the planned airlight_F table, texel fetches (as AirlightTable)",
+                                g.snippet, "sampler2D", gpu_table_texture(table), metadata,
+                                "slut_airlight_radiance(slut_table, slut_planned_table(), " + args + ")"));
             GpuMethod sun;
             sun.name = "sun2005";
             sun.what = "Sun et al. 2005's two-fetch form on a plain 64x64 F(u, v) table (u <= 10, linear axes, "
@@ -226,8 +227,9 @@ public:
             sun.uniforms = {{"f_u_max", static_cast<float>(kSunFUMax)}};
             GpuMethod closed;
             closed.name = "closed";
-            closed.what = "closed form without extinction times e^(-sigma_t D), Macklin 2010 (bench/shaders/closed_form.glsl; "
-                          "an infinite ray as 1e30 m: the form takes a finite length)";
+            closed.what =
+                "closed form without extinction times e^(-sigma_t D), Macklin 2010 (bench/shaders/closed_form.glsl; "
+                "an infinite ray as 1e30 m: the form takes a finite length)";
             closed.source = "closed_form.glsl";
             closed.call = "closed_form_attenuated(in0.x, in0.y, in0.z, in0.w, in1.x, in1.y, min(in1.z, 1e30))";
             g.methods.push_back(sun);
@@ -246,12 +248,13 @@ public:
                                             "sampler2D", texture, metadata, call));
         g.methods.push_back(gpu_tier_method("accurate", "SLUT_TIER_ACCURATE: texel fetches, the bilinear in the shader",
                                             g.snippet, "sampler2D", texture, metadata, call));
-        g.methods.push_back(gpu_tier_method("none", "no tier (as accurate): texel fetches, as AirlightHgTable", g.snippet,
-                                            "sampler2D", texture, metadata, call));
+        g.methods.push_back(gpu_tier_method("none", "no tier (as accurate): texel fetches, as AirlightHgTable",
+                                            g.snippet, "sampler2D", texture, metadata, call));
         for (const char *form : {"thin", "distant"}) {
             GpuMethod m;
             m.name = form;
-            m.what = std::string("the snippet's closed form with the phase, no table (slut_airlight_hg_radiance_") + form + ")";
+            m.what = std::string("the snippet's closed form with the phase, no table (slut_airlight_hg_radiance_") +
+                     form + ")";
             m.source = g.snippet;
             m.call = std::string("slut_airlight_hg_radiance_") + form + "(" + args + ", " + phase_g + ")";
             g.methods.push_back(m);

@@ -111,17 +111,19 @@ public:
         const std::string metadata = "SlutAirlightTable slut_planned_table() {\n    return slut_airlight_table(" +
                                      std::to_string(table.axes[0].map.count) + ", " +
                                      std::to_string(table.axes[1].map.count) + ");\n}\n";
-        const std::string call = "slut_airlight_radiance(slut_table, slut_planned_table(), " +
-                                 std::string(kAirlightGpuArgs) + ")";
+        const std::string call =
+            "slut_airlight_radiance(slut_table, slut_planned_table(), " + std::string(kAirlightGpuArgs) + ")";
         const auto texture = gpu_table_texture(table);
-        g.methods.push_back(gpu_tier_method("fast",
-                                            "SLUT_TIER_FAST: the planned airlight_rational table, one hardware-filtered "
-                                            "fetch per end of the ray",
-                                            g.snippet, "sampler2D", texture, metadata, call));
-        g.methods.push_back(gpu_tier_method("accurate",
-                                            "SLUT_TIER_ACCURATE: the planned airlight_rational table, four texel fetches "
-                                            "per end, the bilinear in the shader",
-                                            g.snippet, "sampler2D", texture, metadata, call));
+        g.methods.push_back(
+            gpu_tier_method("fast",
+                            "SLUT_TIER_FAST: the planned airlight_rational table, one hardware-filtered "
+                            "fetch per end of the ray",
+                            g.snippet, "sampler2D", texture, metadata, call));
+        g.methods.push_back(
+            gpu_tier_method("accurate",
+                            "SLUT_TIER_ACCURATE: the planned airlight_rational table, four texel fetches "
+                            "per end, the bilinear in the shader",
+                            g.snippet, "sampler2D", texture, metadata, call));
         return g;
     }
     const char *runtime_class() const override { return "AirlightRationalTable"; }

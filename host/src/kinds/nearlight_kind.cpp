@@ -199,8 +199,10 @@ public:
             near_light_gpu_inputs(queries, kAnisotropic ? "scatterlut_nearlight_hg.glsl" : "scatterlut_nearlight.glsl");
         std::string axes;
         for (const Axis &a : table.axes) axes += (axes.empty() ? "" : ", ") + glsl_axis(a);
-        std::string base = std::string(finite_ ? "slut_near_light_table_e4(" : "slut_near_light_table_e3(") + axes + ")";
-        std::string phase_g, type = "SlutNearLightTable", radiance = "slut_near_light_radiance", closed = "slut_near_light_radiance_";
+        std::string base =
+            std::string(finite_ ? "slut_near_light_table_e4(" : "slut_near_light_table_e3(") + axes + ")";
+        std::string phase_g, type = "SlutNearLightTable", radiance = "slut_near_light_radiance",
+                             closed = "slut_near_light_radiance_";
         if constexpr (kAnisotropic) {
             phase_g = glsl_float(NearLightHgTable(table).phase_g());
             base = "slut_near_light_hg_table(" + base + ", " + phase_g + ")";
@@ -212,17 +214,21 @@ public:
         const std::string args = kNearLightGpuArgs;
         const std::string call = radiance + "(slut_table, slut_planned_table(), " + args + ")";
         const auto texture = gpu_table_texture(table);
-        const std::string fetches = finite_ ? "two trilinear filtered fetches (E4: the two layers)" : "one trilinear filtered fetch";
-        g.methods.push_back(gpu_tier_method("fast", "SLUT_TIER_FAST: " + fetches, g.snippet, "sampler3D", texture,
-                                            metadata, call));
-        g.methods.push_back(gpu_tier_method("accurate", "SLUT_TIER_ACCURATE: texel fetches, the trilinear in the shader",
-                                            g.snippet, "sampler3D", texture, metadata, call));
-        g.methods.push_back(gpu_tier_method("none", std::string("no tier (as accurate): texel fetches, as ") + runtime_class(),
+        const std::string fetches =
+            finite_ ? "two trilinear filtered fetches (E4: the two layers)" : "one trilinear filtered fetch";
+        g.methods.push_back(
+            gpu_tier_method("fast", "SLUT_TIER_FAST: " + fetches, g.snippet, "sampler3D", texture, metadata, call));
+        g.methods.push_back(gpu_tier_method("accurate",
+                                            "SLUT_TIER_ACCURATE: texel fetches, the trilinear in the shader", g.snippet,
+                                            "sampler3D", texture, metadata, call));
+        g.methods.push_back(gpu_tier_method("none",
+                                            std::string("no tier (as accurate): texel fetches, as ") + runtime_class(),
                                             g.snippet, "sampler3D", texture, metadata, call));
         for (const char *form : {"thin", "distant"}) {
             GpuMethod m;
             m.name = form;
-            m.what = std::string(form[0] == 't' ? "thin-medium closed form, Gath 2008 §4.2" : "distant-light limit, Gath 2008 eq. 5") +
+            m.what = std::string(form[0] == 't' ? "thin-medium closed form, Gath 2008 §4.2"
+                                                : "distant-light limit, Gath 2008 eq. 5") +
                      (kAnisotropic ? ", with the phase" : "") + " (" + closed + form + ", no table)";
             m.source = g.snippet;
             m.call = closed + form + "(" + (kAnisotropic ? phase_g + ", " : std::string()) + args + ")";
