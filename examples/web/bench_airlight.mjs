@@ -1,38 +1,48 @@
-// Per-pixel cost of the airlight snippet on Chromium's SwiftShader (WebGL2), A/B:
+// Per-pixel cost of the airlight snippet on Chromium's SwiftShader (WebGL2), A/B, per tier:
 //   node examples/web/bench_airlight.mjs TABLE.slut SNIPPET.essl [SNIPPET2.essl ...]
-//        [--chromium PATH] [--rounds N] [--frames N] [--lamps 1..6] [--near NEAR_E3.slut]
+//        [--rational RATIONAL.slut [--tiers fast,accurate,none]] [--chromium PATH] [--rounds N]
+//        [--frames N] [--lamps 1..6] [--near NEAR_E3.slut]
 // renders the web demo's fixed view (fog.mjs: 480 x 270, the street, its six lamps; the rays
 // end on the ground, the far wall or the slab) with the airlight of its lamps only (no near
 // light), once per given GLSL ES snippet (scatterlut_airlight.essl, e.g. one assembled
-// before a change), once with the closed form engines use (Macklin 2010, × e^{−σ_t D}) and
-// once with Sun et al. 2005's two-fetch form on a plain 64 x 64 F(u, v) table (u in [0, 10],
+// before a change) and tier, once with the closed form engines use (Macklin 2010, × e^{−σ_t D})
+// and once with Sun et al. 2005's two-fetch form on a plain 64 x 64 F(u, v) table (u in [0, 10],
 // v in [0, π/2], linear axes, bilinear, clamped; F by composite Simpson here), as
 // bench/bench_gpu_pixel.cpp writes them for llvmpipe, into an R32F target. Rounds A B C … with the order rotated each round; per frame
 // drawArrays + a one-pixel readPixels (which waits for the frame), wall clock; per round each
-// method's median frame, and its ratio to the first snippet in the same round. Prints per
+// method's median frame, and its ratio to the first method in the same round. Prints per
 // method: compile + link ms, the first frame (SwiftShader builds the pipeline there), the
 // median frame, ns per pixel and lamp, the per-round ratios, and the largest relative
-// difference of its frame from the first snippet's (pixels with a finite, nonzero value).
+// difference of its frame from the first method's (pixels with a finite, nonzero value).
 // TABLE.slut: the default airlight table (`scatterlut generate --out DIR`, airlight_F.slut).
+// Tiers (docs/SHADERS.md, "Tiers"; fog.mjs's ?tier=): without --rational every snippet runs
+// without a tier (on TABLE.slut); with --rational RATIONAL.slut (airlight_rational.slut of the
+// same run) every snippet runs in each tier of --tiers (default fast,accurate,none, in that
+// order): fast (#define SLUT_TIER_FAST, the airlight_rational table with linear filtering,
+// which needs OES_texture_float_linear), accurate (SLUT_TIER_ACCURATE, the same table, texel
+// fetches) and none (TABLE.slut, texel fetches).
 // With --near NEAR_E3.slut (near_light_E3.slut of the same run) a snippet argument may be
 // AIR.essl+NEAR.essl: that method also renders the near light through the slab, as fog.mjs
-// does (the whole fixed view of the web demo).
+// does (the whole fixed view of the web demo), in the same tier (the define sets both
+// snippets' tier; fast filters the E3 table linearly too).
 // Needs the npm modules (npm ci in examples/web) and Chromium; exits 77 without them.
 import { existsSync, readFileSync } from 'node:fs';
 import { basename } from 'node:path';
 import { parseSlut } from '../../tests/js/slut.mjs';
 import { parseArgs, launchSwiftShader, blankPage, median } from './bench_chromium.mjs';
 
-const usage = 'usage: node bench_airlight.mjs TABLE.slut SNIPPET.essl [SNIPPET2.essl ...] [--chromium PATH] ' +
+const usage = 'usage: node bench_airlight.mjs TABLE.slut SNIPPET.essl [SNIPPET2.essl ...] ' +
+	'[--rational RATIONAL.slut [--tiers fast,accurate,none]] [--chromium PATH] ' +
 	'[--rounds 1..100] [--frames 1..100] [--lamps 1..6] [--near NEAR_E3.slut]';
-const { opt, positional, intOption } = parseArgs(process.argv.slice(2), ['--chromium', '--rounds', '--frames', '--lamps', '--near'],
-	[], usage, 'bench_airlight');
+const { opt, positional, intOption } = parseArgs(process.argv.slice(2),
+	['--chromium', '--rounds', '--frames', '--lamps', '--near', '--rational', '--tiers'], [], usage, 'bench_airlight');
 if (positional.length < 2) { console.error(usage); process.exit(2); }
 const rounds = intOption('--rounds', 5, 1, 100), frames = intOption('--frames', 3, 1, 100);
 const lamps = intOption('--lamps', 6, 1, 6);
 const [tablePath, ...snippetPaths] = positional;
-const nearPath = opt('--near');
-for (const p of [...positional.flatMap((a) => a.split('+')), ...(nearPath ? [nearPath] : [])])
+const nearPath = opt('--near'), rationalPath = opt('--rational');
+for (const p of [...positional.flatMap((a) => a.split('+')), ...(nearPath ? [nearPath] : []),
+	...(rationalPath ? [rationalPath] : [])])
 	if (!existsSync(p)) { console.error(`bench_airlight: ${p}: no such file`); process.exit(2); }
 const table = parseSlut(readFileSync(tablePath), tablePath);
 if (table.kind !== 'airlight_F' || table.axes[0].warpName !== 'log1p' || table.axes[1].warpName !== 'asinh_cot') {
@@ -45,12 +55,31 @@ if (near && near.kind !== 'near_light_E3') {
 	console.error(`bench_airlight: ${nearPath}: expected a near_light_E3 table, got ${near.kind}`);
 	process.exit(2);
 }
-const methods = snippetPaths.map((p, k) => {
+const rational = rationalPath ? parseSlut(readFileSync(rationalPath), rationalPath) : undefined;
+if (rational && rational.kind !== 'airlight_rational') {
+	console.error(`bench_airlight: ${rationalPath}: expected an airlight_rational table, got ${rational.kind}`);
+	process.exit(2);
+}
+// The tiers: their define and the airlight table they sample (fog.mjs's kTiers).
+const kTiers = {
+	fast: { define: 'SLUT_TIER_FAST', table: 'rational', linear: true },
+	accurate: { define: 'SLUT_TIER_ACCURATE', table: 'rational', linear: false },
+	none: { define: '', table: 'F', linear: false },
+};
+const tiers = (opt('--tiers') ?? (rational ? 'fast,accurate,none' : 'none')).split(',');
+for (const t of tiers) {
+	if (!(t in kTiers)) { console.error(`bench_airlight: --tiers: ${t}: expected fast, accurate or none\n${usage}`); process.exit(2); }
+	if (kTiers[t].table === 'rational' && !rational) {
+		console.error(`bench_airlight: the ${t} tier samples the airlight_rational table: give --rational RATIONAL.slut`);
+		process.exit(2);
+	}
+}
+const methods = snippetPaths.flatMap((p) => {
 	const [air, nl] = p.split('+');
 	if (nl && !near) { console.error(`bench_airlight: ${p}: a near-light snippet needs --near NEAR_E3.slut`); process.exit(2); }
-	return { name: `${String.fromCharCode(65 + k)}: ${p}`, snippet: readFileSync(air, 'utf8'),
-		nearSnippet: nl ? readFileSync(nl, 'utf8') : '' };
-});
+	return tiers.map((t) => ({ ...kTiers[t], tier: t, path: p, snippet: readFileSync(air, 'utf8'),
+		nearSnippet: nl ? readFileSync(nl, 'utf8') : '' }));
+}).map((m, k) => ({ ...m, name: `${String.fromCharCode(65 + k)}: ${m.path}${rational ? ` [${m.tier}]` : ''}` }));
 methods.push({ name: 'closed form × e^{−σ_t D} (Macklin 2010)', snippet: '', builtin: 'closed' });
 methods.push({ name: 'Sun et al. 2005, 64² F table, two fetches', snippet: '', builtin: 'sun' });
 
@@ -73,7 +102,8 @@ for (let j = 0; j < kFCount; ++j) {
 }
 
 // The page: everything inside one evaluate (no server; WebGL2 on about:blank).
-async function pageBench({ methods, values, air, nearTable, fTable, fCount, fUMax, rounds, frames, lamps, closedGlsl, sunGlsl }) {
+async function pageBench({ methods, values, air, rationalTable, nearTable, fTable, fCount, fUMax, rounds, frames, lamps,
+	closedGlsl, sunGlsl }) {
 	const W = 480, H = 270;
 	const canvas = document.createElement('canvas');
 	canvas.width = W; canvas.height = H;
@@ -87,11 +117,24 @@ async function pageBench({ methods, values, air, nearTable, fTable, fCount, fUMa
 	gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
 	gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
 	gl.texImage2D(gl.TEXTURE_2D, 0, gl.R32F, air.u.count, air.w.count, 0, gl.RED, gl.FLOAT, new Float32Array(values));
+	let rationalTex = null, t3 = null;
+	if (rationalTable) { // the tiers' table (unit 0 while a tier draws), clamped to its edges
+		const [m, t] = rationalTable.axes;
+		rationalTex = gl.createTexture();
+		gl.bindTexture(gl.TEXTURE_2D, rationalTex);
+		gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
+		gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+		gl.texImage2D(gl.TEXTURE_2D, 0, gl.R32F, m.count, t.count, 0, gl.RED, gl.FLOAT,
+			new Float32Array(rationalTable.values));
+		gl.bindTexture(gl.TEXTURE_2D, tex);
+	}
 	if (nearTable) {
 		const [T, g, r] = nearTable.axes;
-		const t3 = gl.createTexture();
+		t3 = gl.createTexture();
 		gl.activeTexture(gl.TEXTURE1);
 		gl.bindTexture(gl.TEXTURE_3D, t3);
+		for (const wrap of [gl.TEXTURE_WRAP_S, gl.TEXTURE_WRAP_T, gl.TEXTURE_WRAP_R])
+			gl.texParameteri(gl.TEXTURE_3D, wrap, gl.CLAMP_TO_EDGE);
 		gl.texParameteri(gl.TEXTURE_3D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
 		gl.texParameteri(gl.TEXTURE_3D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
 		gl.texImage3D(gl.TEXTURE_3D, 0, gl.R32F, T.count, g.count, r.count, 0, gl.RED, gl.FLOAT,
@@ -109,6 +152,22 @@ async function pageBench({ methods, values, air, nearTable, fTable, fCount, fUMa
 	gl.texImage2D(gl.TEXTURE_2D, 0, haveFloatLinear ? gl.R32F : gl.R16F, fCount, fCount, 0, gl.RED, gl.FLOAT,
 		new Float32Array(fTable));
 	gl.activeTexture(gl.TEXTURE0);
+	if (methods.some((m) => m.linear) && !haveFloatLinear)
+		throw new Error('the fast tier filters R32F tables linearly: this WebGL2 lacks OES_texture_float_linear');
+	// A method's tables on units 0 (airlight) and 1 (E3), filtered as its tier samples them.
+	const bindTables = (m) => {
+		const filter = m.linear ? gl.LINEAR : gl.NEAREST;
+		gl.activeTexture(gl.TEXTURE0);
+		gl.bindTexture(gl.TEXTURE_2D, m.table === 'rational' ? rationalTex : tex);
+		gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, filter);
+		gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, filter);
+		if (t3) {
+			gl.activeTexture(gl.TEXTURE1);
+			gl.texParameteri(gl.TEXTURE_3D, gl.TEXTURE_MIN_FILTER, filter);
+			gl.texParameteri(gl.TEXTURE_3D, gl.TEXTURE_MAG_FILTER, filter);
+			gl.activeTexture(gl.TEXTURE0);
+		}
+	};
 	const target = gl.createTexture();
 	gl.bindTexture(gl.TEXTURE_2D, target);
 	gl.texStorage2D(gl.TEXTURE_2D, 1, gl.R32F, W, H);
@@ -160,6 +219,16 @@ float sun_points(vec3 eye, vec3 d, vec3 light, float s, float ss, float sa, floa
     return sun2005(ss, sa, i0, dist, sin_part / n, cos_part / n, min(s, 1e30));
 }
 `;
+	// The snippet's table: the airlight_rational table's two counts in a tier (fog.mjs), else the
+	// airlight_F table's axes.
+	const airTable = `#if defined(SLUT_TIER_FAST) || defined(SLUT_TIER_ACCURATE)
+    SlutAirlightTable air = slut_airlight_table(int(air_u.w), int(air_w.w));
+#else
+    SlutAirlightTable air = slut_airlight_table(air_u.y, air_u.z, int(air_u.w), air_w.x, int(air_w.w));
+#endif
+`;
+	const snippetCall = 'slut_airlight_radiance_points(airlight_table, air, eye, d, lights[k].xyz, s, fog_sigma.x, ' +
+		'fog_sigma.y, lights[k].w)';
 	const main = (call, withNear) => `
 uniform sampler2D airlight_table;${withNear ? '\nuniform sampler3D near_table;\nuniform vec4 near_T, near_g, near_r;\nuniform ivec3 near_warps;' : ''}
 uniform vec4 air_u, air_w;
@@ -184,13 +253,12 @@ void main() {
         p = eye + t * d;
         if (t < s && p.x >= 1.2 && p.x <= 3.2 && p.y >= 0.0 && p.y <= 2.0) { s = t; slab = true; }
     }
-    float L = 0.0;
+${call === snippetCall ? airTable : ''}    float L = 0.0;
     for (int k = 0; k < ${lamps}; ++k) L += ${call};${withNear ? slabLoop : ''}
     radiance = L;
 }
 `;
-	const snippetCall = 'slut_airlight_radiance_points(airlight_table, slut_airlight_table(air_u.y, air_u.z, int(air_u.w), ' +
-		'air_w.x, int(air_w.w)), eye, d, lights[k].xyz, s, fog_sigma.x, fog_sigma.y, lights[k].w)';
+
 	const closedCall = 'closed_points(eye, d, lights[k].xyz, s, fog_sigma.x, fog_sigma.y, lights[k].w)';
 	const sunCall = 'sun_points(eye, d, lights[k].xyz, s, fog_sigma.x, fog_sigma.y, lights[k].w)';
 	const one = new Float32Array(4);
@@ -207,7 +275,7 @@ void main() {
 		};
 		const program = gl.createProgram();
 		gl.attachShader(program, shader(gl.VERTEX_SHADER, vs));
-		gl.attachShader(program, shader(gl.FRAGMENT_SHADER, '#version 300 es\n' +
+		gl.attachShader(program, shader(gl.FRAGMENT_SHADER, '#version 300 es\n' + (m.define ? `#define ${m.define}\n` : '') +
 			(m.snippet ? m.snippet + m.nearSnippet + main(snippetCall, m.nearSnippet !== '')
 				: m.builtin === 'closed' ? 'precision highp float;\n' + closed + main(closedCall, false)
 					: 'precision highp float;\n' + sun + main(sunCall, false))));
@@ -219,8 +287,9 @@ void main() {
 		gl.uniform1i(loc('airlight_table'), 0);
 		gl.uniform1i(loc('f_table'), 2);
 		gl.uniform1f(loc('f_u_max'), fUMax);
-		gl.uniform4f(loc('air_u'), air.u.min, air.u.max, air.u.scale, air.u.count);
-		gl.uniform4f(loc('air_w'), air.w.min, air.w.max, air.w.scale, air.w.count);
+		const [au, aw] = m.table === 'rational' ? rationalTable.axes : [air.u, air.w];
+		gl.uniform4f(loc('air_u'), au.min, au.max, au.scale, au.count);
+		gl.uniform4f(loc('air_w'), aw.min, aw.max, aw.scale, aw.count);
 		gl.uniform3fv(loc('eye'), eye); gl.uniform3fv(loc('fwd'), fwd);
 		gl.uniform3fv(loc('right'), right); gl.uniform3fv(loc('up'), up);
 		gl.uniform1f(loc('tan_half_fov'), Math.tan((50 * Math.PI) / 360));
@@ -233,19 +302,21 @@ void main() {
 			for (const [n, a] of [['near_T', T], ['near_g', g], ['near_r', r]]) gl.uniform4f(loc(n), a.min, a.max, a.scale, a.count);
 			gl.uniform3i(loc('near_warps'), T.warp, g.warp, r.warp);
 		}
+		bindTables(m);
 		gl.drawArrays(gl.TRIANGLES, 0, 3);
 		finish();
 		const t2 = performance.now();
 		console.log(`${m.name}: compile + link ${(t1 - t0).toFixed(0)} ms, first frame ${(t2 - t1).toFixed(0)} ms`);
 		const frame = new Float32Array(W * H * 4);
 		gl.readPixels(0, 0, W, H, gl.RGBA, gl.FLOAT, frame);
-		results.push({ name: m.name, program, compile_ms: t1 - t0, first_frame_ms: t2 - t1,
+		results.push({ name: m.name, method: m, program, compile_ms: t1 - t0, first_frame_ms: t2 - t1,
 			frame: Array.from({ length: W * H }, (_, k) => frame[4 * k]), round_ms: [] });
 	}
 	for (let r = 0; r < rounds; ++r) {
 		for (let q = 0; q < results.length; ++q) {
 			const m = results[(q + r) % results.length];
 			gl.useProgram(m.program);
+			bindTables(m.method);
 			const times = [];
 			for (let f = 0; f < frames; ++f) {
 				const t0 = performance.now();
@@ -267,6 +338,7 @@ void main() {
 		m.max_rel_vs_A = maxRel;
 		delete m.frame;
 		delete m.program;
+		delete m.method;
 	}
 	return { renderer, W, H, results, haveFloatLinear };
 }
@@ -278,11 +350,14 @@ try {
 		methods, values: Array.from(table.values), rounds, frames, lamps,
 		fTable: Array.from(fTable), fCount: kFCount, fUMax: kFUMax, closedGlsl, sunGlsl,
 		nearTable: near ? { axes: near.axes, values: Array.from(near.values) } : undefined,
+		rationalTable: rational ? { axes: rational.axes, values: Array.from(rational.values) } : undefined,
 		air: { u: au, w: aw },
 	});
 	const pixels = out.W * out.H;
 	console.log(`${out.renderer}; ${out.W} x ${out.H} pixels, ${lamps} lamp(s), ${rounds} rounds x ${frames} frames, ` +
-		`table ${basename(tablePath)} (${au.count} x ${aw.count}); F table ${out.haveFloatLinear ? 'R32F' : 'R16F (no OES_texture_float_linear)'}`);
+		`table ${basename(tablePath)} (${au.count} x ${aw.count})` +
+		(rational ? `, tiers' table ${basename(rationalPath)} (${rational.axes[0].count} x ${rational.axes[1].count})` : '') +
+		`; F table ${out.haveFloatLinear ? 'R32F' : 'R16F (no OES_texture_float_linear)'}`);
 	console.log('| method | compile + link, ms | first frame, ms | frame, ms: median [min-max] of rounds | ns per pixel and lamp | / A: median [min-max] of per-round ratios | max rel. diff from A |');
 	console.log('|---|---|---|---|---|---|---|');
 	const a = out.results[0].round_ms;
