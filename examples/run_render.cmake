@@ -1,5 +1,6 @@
 # cmake -DSCATTERLUT=… -DRENDER_FOG=… -DWORK_DIR=… [-DSCENE_FORWARD=…/fog_forward.toml] -P run_render.cmake
-# Generates the default tables into WORK_DIR/tables, renders WORK_DIR/{table,exact}.png; with
+# Generates the default tables into WORK_DIR/tables, renders WORK_DIR/{table,exact}.png and the
+# street lit by spot lights WORK_DIR/{spots_table,spots_exact}.png; with
 # SCENE_FORWARD also that scene's tables into WORK_DIR/tables_forward and the anisotropic
 # coloured picture from its g = 0.85 airlight table, WORK_DIR/{hg_table,hg_exact}.png; and the
 # lit street (render_fog --street: ground and walls lit through the fog, Sun et al. 2005's
