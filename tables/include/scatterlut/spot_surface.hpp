@@ -15,8 +15,10 @@
 // spot is the point light and G^spot_n = G_n(σ_t D, θ) of surface.hpp.
 #pragma once
 
+#include "scatterlut/anisotropic.hpp" // Rgb
 #include "scatterlut/spot.hpp"
 #include "scatterlut/surface.hpp"
+#include "scatterlut/surface_radiance.hpp"
 
 namespace scatterlut {
 
@@ -55,5 +57,53 @@ double spot_surface_irradiance_exact(const SpotSurfacePoint &q);
 
 // S_n in W/m² (q.lobe_axis = ρ): σ_s I0/(4π D) · spot_surface_G_exact(n, q).
 double spot_surface_specular_exact(const SpotSurfacePoint &q, int exponent);
+
+// ---------------------------------------------------------------- what an engine can afford
+// A lit surface in physical units as surface_radiance.hpp (the same four terms, material and
+// tables), the point light replaced by a spot. θ_P is the spot angle of P (between the spot's
+// axis and the direction FROM THE LIGHT TO P), f(θ_P) its falloff (spot_falloff_at_point).
+//
+//   direct terms   k_d/π E_d, k_s P_d:  the point light's, times f(θ_P)      (exact: the light
+//                                        sends I0 f(θ_P) towards P)
+//   scattered terms k_d/π E_ss, k_s S_n: the point light's (G from the surface_G tables),
+//                                        times f(θ_P)                         (the approximation)
+//
+// The scattered factor is the simplest one and is far off where the beam is narrow: inside
+// it f = 1 keeps the point light's E_ss, which gathers scattered light from the whole sphere
+// around the light while the spot lights only its cone (several times too bright for a narrow
+// beam in thin fog), and outside it f = 0 drops the glow the beam scatters onto the surface.
+// docs/SPOT.md ("Surfaces lit by a spot") gives its measured error and where it fails
+// (`scatterlut report` measures it on a scene's spot-lit surfaces).
+
+// One surface point, one spot light and the viewer, positions in m (SurfaceLighting with a spot).
+struct SpotSurfaceLighting {
+    double point_m[3] = {0, 0, 0};  // P
+    double normal[3] = {0, 0, 1};   // unit normal n (|n| = 1 within 1e-6), on the viewer's side
+    double viewer_m[3] = {0, 0, 1}; // the viewer's position (≠ P)
+    SpotLight light;                // position (≠ P), axis, θ_o ≥ θ_i, I0 on the axis
+};
+
+// f(θ_P) ∈ [0, 1]: glTF's falloff of the direction from the light to `point_m` (≠ the light's
+// position; std::invalid_argument for a bad light or point).
+double spot_falloff_at_point(const SpotLight &light, const double point_m[3]);
+
+// The terms as above, W/(m²·sr), G from the tables (SurfaceTables of surface_radiance.hpp; T
+// beyond a table's axis by quadrature). Throws std::invalid_argument as surface_radiance and
+// for a bad spot (angles outside [0, π], θ_i > θ_o, a zero axis, I0 not finite or < 0). ≥ 0,
+// never NaN.
+SurfaceRadiance spot_surface_radiance(const SurfaceTables &tables, const SpotSurfaceLighting &s, double sigma_s_per_m,
+                                      double sigma_a_per_m, const SurfaceMaterial &m);
+
+// The reference: the direct terms as above (exact), the scattered ones from the spot's exact
+// E_ss and S_n (spot_surface_G_exact with n and ρ; milliseconds to a second per term).
+SurfaceRadiance spot_surface_radiance_exact(const SpotSurfaceLighting &s, double sigma_s_per_m, double sigma_a_per_m,
+                                            const SurfaceMaterial &m);
+
+// Per colour channel (σ_s, σ_a one value per channel; geometry, light and material shared):
+// the total per channel, each the scalar form's.
+Rgb spot_surface_radiance_rgb(const SurfaceTables &tables, const SpotSurfaceLighting &s, const Rgb &sigma_s_per_m,
+                              const Rgb &sigma_a_per_m, const SurfaceMaterial &m);
+Rgb spot_surface_radiance_exact_rgb(const SpotSurfaceLighting &s, const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m,
+                                    const SurfaceMaterial &m);
 
 } // namespace scatterlut
