@@ -27,6 +27,7 @@
 #include "report_gpu.hpp"
 #include "report_ladders.hpp"
 #include "report_spot.hpp"
+#include "report_spot_surfaces.hpp"
 #include "report_writers.hpp"
 #include "svg_plot.hpp"
 #include "text_format.hpp"
@@ -141,6 +142,12 @@ int run_report(const ReportOptions &opt, const std::string &command_line) {
                               : g.why_not)
                       << "\n";
     md += gpu_markdown(gpu, gpu_cpu_rows, scene.relative_error);
+    if (scene_has_spot_surfaces(scene)) {
+        // Surfaces lit by spot lights (docs/SPOT.md): the falloff factor against the exact terms.
+        const int points = std::clamp(opt.queries / 20, 20, 2000);
+        std::cout << "spot-lit surfaces: " << points << " points\n";
+        md += spot_surface_section(scene, points, opt.out_dir);
+    }
     write_text(opt.out_dir + "/report.md", md);
     std::cout << "wrote " << opt.out_dir << "/report.md\n";
     return 0;
@@ -162,8 +169,10 @@ void setup_report(CLI::App &app, int &exit_code, const std::string &command_line
     add_integer_option(cmd, "--rounds", opt->rounds, "Interleaved timing rounds per measurement (median reported)", 1,
                        100)
         ->capture_default_str();
-    add_integer_option(cmd, "--queries", opt->queries, "Random radiance queries over the scene's domain per table", 100,
-                       1000000)
+    add_integer_option(cmd, "--queries", opt->queries,
+                       "Random radiance queries over the scene's domain per table (and 1/20 as many spot-lit surface "
+                       "points, 20 to 2000, where spot lights light surfaces)",
+                       100, 1000000)
         ->capture_default_str();
     cmd->add_flag("--no-gpu", opt->no_gpu,
                   "Skip the GPU section's measurement (the snippets' tiers drawn through EGL/OpenGL; the section "
