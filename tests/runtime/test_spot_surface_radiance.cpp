@@ -17,6 +17,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -132,7 +133,8 @@ TEST(SpotSurfaceRadiance, ThePointLightsTermsTimesTheFalloff) {
         const double theta_P = r.u(0.0, std::min(kPi, 1.6 * outer));
         const SpotSurfaceLighting s = random_lighting(r, outer, inner, theta_P, r.u(0.1, 30.0));
         const double sigma_s = r.u(0.0, 0.3), sigma_a = r.u(0.0, 0.1);
-        const SurfaceRadiance got = spot_surface_radiance(tables(), s, sigma_s, sigma_a, material());
+        const SurfaceRadiance got =
+            spot_surface_radiance(tables(), s, sigma_s, sigma_a, material(), SpotScatterModel::falloff);
         const SurfaceRadiance point = surface_radiance(tables(), as_point_light(s), sigma_s, sigma_a, material());
         const double f = gltf_falloff(s.light, s.point_m);
         EXPECT_NEAR(spot_falloff_at_point(s.light, s.point_m), f, 1e-12) << k;
@@ -158,9 +160,14 @@ TEST(SpotSurfaceRadiance, PointLightLimit) {
     for (int k = 0; k < 20; ++k) {
         const SpotSurfaceLighting s = random_lighting(r, kPi, kPi, r.u(0.0, kPi), r.u(0.5, 10.0));
         const double sigma_s = r.u(0.01, 0.3), sigma_a = r.u(0.0, 0.1);
-        const SurfaceRadiance a = spot_surface_radiance(tables(), s, sigma_s, sigma_a, material());
+        const SurfaceRadiance a = spot_surface_radiance(tables(), s, sigma_s, sigma_a, material(), SpotScatterModel::falloff);
         const SurfaceRadiance b = surface_radiance(tables(), as_point_light(s), sigma_s, sigma_a, material());
         EXPECT_EQ(a.total(), b.total()) << k;
+        // The thin-beam model never exceeds the point light's terms.
+        const SurfaceRadiance thin = spot_surface_radiance(tables(), s, sigma_s, sigma_a, material());
+        EXPECT_LE(thin.diffuse_scattered, b.diffuse_scattered) << k;
+        EXPECT_LE(thin.specular_scattered, b.specular_scattered) << k;
+        EXPECT_EQ(thin.diffuse_direct, b.diffuse_direct) << k;
         if (k % 4 != 0) continue; // the exact reference: a few (tenths of a second each)
         const SurfaceRadiance e = spot_surface_radiance_exact(s, sigma_s, sigma_a, material());
         const SurfaceRadiance p = surface_radiance_exact(as_point_light(s), sigma_s, sigma_a, material());
@@ -183,6 +190,33 @@ FactorError factor_error(const SpotSurfaceLighting &s, double sigma_s, double si
     const double f = spot_falloff_at_point(s.light, s.point_m);
     return {f * point.diffuse_scattered / exact.diffuse_scattered - 1.0,
             f * point.specular_scattered / exact.specular_scattered - 1.0};
+}
+
+// The thin-beam model's E_ss over the exact one (the point light's G exact, as above).
+double thin_over_exact(const SpotSurfaceLighting &s, double sigma_s, double sigma_a) {
+    const SurfaceRadiance point = surface_radiance_exact(as_point_light(s), sigma_s, sigma_a, material(0.7, 0.0));
+    const SurfaceRadiance exact = spot_surface_radiance_exact(s, sigma_s, sigma_a, material(0.7, 0.0));
+    SpotSurfacePoint q;
+    q.sigma_s_per_m = sigma_s;
+    q.sigma_a_per_m = sigma_a;
+    q.point_m = {s.point_m[0], s.point_m[1], s.point_m[2]};
+    q.lobe_axis = {s.normal[0], s.normal[1], s.normal[2]};
+    q.light = s.light;
+    const double D = std::sqrt(dot(add(V{q.point_m[0], q.point_m[1], q.point_m[2]}, -1.0,
+                                       V{s.light.position_m[0], s.light.position_m[1], s.light.position_m[2]}),
+                                   add(V{q.point_m[0], q.point_m[1], q.point_m[2]}, -1.0,
+                                       V{s.light.position_m[0], s.light.position_m[1], s.light.position_m[2]})));
+    // point.diffuse_scattered = (weights) · σ_s I0/(4π D) · G_1(T, θ_s): the factor needs G_1 itself.
+    SurfaceQuery p;
+    p.sigma_s_per_m = sigma_s;
+    p.sigma_a_per_m = sigma_a;
+    p.intensity_W_per_sr = 1.0;
+    p.distance_m = D;
+    const V wl = unit(add(V{s.light.position_m[0], s.light.position_m[1], s.light.position_m[2]}, -1.0,
+                          V{q.point_m[0], q.point_m[1], q.point_m[2]}));
+    p.theta_rad = std::acos(std::clamp(dot(wl, V{s.normal[0], s.normal[1], s.normal[2]}), -1.0, 1.0));
+    const double G = surface_G_exact(1, (sigma_s + sigma_a) * D, p.theta_rad);
+    return spot_surface_thin_factor(1, q, G) * point.diffuse_scattered / exact.diffuse_scattered;
 }
 
 TEST(SpotSurfaceRadiance, ApproximationHoldsForVeryWideBeams) {
@@ -220,12 +254,15 @@ TEST(SpotSurfaceRadiance, ApproximationFailsForANarrowSpot) {
             s.viewer_m[i] = s.point_m[i] + 3.0 * to_light[static_cast<size_t>(i)];
         }
         const FactorError on_axis = factor_error(s, 0.09 * T, 0.01 * T);
-        std::printf("  sigma_t D = %-4g on the axis: %.2f\n", T, on_axis.diffuse + 1.0);
+        const double thin = thin_over_exact(s, 0.09 * T, 0.01 * T);
+        std::printf("  sigma_t D = %-4g on the axis: falloff %.2f, thin beam %.3f\n", T, on_axis.diffuse + 1.0, thin);
         EXPECT_GT(on_axis.diffuse, 1.0) << T; // more than twice the truth
+        if (T <= 1.0) EXPECT_NEAR(thin, 1.0, 0.05) << T;
+        else EXPECT_GT(thin, 1.1) << T; // the beam, 1.7 m wide at P, is 0.17 mean free paths: no longer thin
     }
     const SpotSurfaceLighting outside = random_lighting(r, 12 * deg, 8 * deg, 20 * deg, 10.0);
     const SurfaceRadiance exact = spot_surface_radiance_exact(outside, 0.09, 0.01, material());
-    const SurfaceRadiance approx = spot_surface_radiance(tables(), outside, 0.09, 0.01, material());
+    const SurfaceRadiance approx = spot_surface_radiance(tables(), outside, 0.09, 0.01, material(), SpotScatterModel::falloff);
     EXPECT_EQ(approx.total(), 0.0);
     EXPECT_EQ(exact.diffuse_direct + exact.specular_direct, 0.0);
     EXPECT_GT(exact.diffuse_scattered, 0.0);
@@ -240,6 +277,9 @@ TEST(SpotSurfaceRadiance, RgbIsTheScalarPerChannel) {
     const Rgb exact = spot_surface_radiance_exact_rgb(s, sigma_s, sigma_a, material(0.7, 0.0));
     for (int c = 0; c < 3; ++c) {
         EXPECT_EQ(got[c], spot_surface_radiance(tables(), s, sigma_s[c], sigma_a[c], material()).total()) << c;
+        EXPECT_EQ(spot_surface_radiance_rgb(tables(), s, sigma_s, sigma_a, material(), SpotScatterModel::falloff)[c],
+                  spot_surface_radiance(tables(), s, sigma_s[c], sigma_a[c], material(), SpotScatterModel::falloff).total())
+            << c;
         EXPECT_EQ(exact[c], spot_surface_radiance_exact(s, sigma_s[c], sigma_a[c], material(0.7, 0.0)).total()) << c;
     }
     EXPECT_THROW(spot_surface_radiance_rgb(tables(), s, Rgb{0.1, -1.0, 0.1}, sigma_a, material()), std::invalid_argument);
@@ -281,6 +321,107 @@ TEST(SpotSurfaceRadiance, RefusesBadInput) {
     EXPECT_THROW(spot_surface_radiance(SurfaceTables{}, good, 0.1, 0.01, material()), std::invalid_argument);
     const double at_light[3] = {good.light.position_m[0], good.light.position_m[1], good.light.position_m[2]};
     EXPECT_THROW(spot_falloff_at_point(good.light, at_light), std::invalid_argument);
+}
+
+// ---------------------------------------------------------------- (5) the thin-beam model
+// Its definition: the scattered terms are min(point light's, the same assembled with
+// e^{−σ_t D} G^spot_n(T = 0) of the fixed rule).
+TEST(SpotSurfaceThinBeam, IsTheSmallerOfThePointLightsAndTheThinBeamsTerm) {
+    Random r(404);
+    int below = 0;
+    for (int k = 0; k < 40; ++k) {
+        const double outer = r.u(0.05, 2.0), inner = r.u(0.0, outer);
+        const SpotSurfaceLighting s = random_lighting(r, outer, inner, r.u(0.0, std::min(kPi, 2.0 * outer)), r.u(0.5, 20));
+        const double sigma_s = r.u(0.001, 0.2), sigma_a = r.u(0.0, 0.05);
+        const SurfaceRadiance got = spot_surface_radiance(tables(), s, sigma_s, sigma_a, material());
+        const SurfaceRadiance point = surface_radiance(tables(), as_point_light(s), sigma_s, sigma_a, material());
+        const V p{s.point_m[0], s.point_m[1], s.point_m[2]}, n{s.normal[0], s.normal[1], s.normal[2]};
+        const V L{s.light.position_m[0], s.light.position_m[1], s.light.position_m[2]};
+        const V v{s.viewer_m[0], s.viewer_m[1], s.viewer_m[2]};
+        const double D = std::sqrt(dot(add(L, -1, p), add(L, -1, p))), Dv = std::sqrt(dot(add(v, -1, p), add(v, -1, p)));
+        const double st = sigma_s + sigma_a;
+        const double weight = std::exp(-st * Dv) * sigma_s * s.light.intensity_W_per_sr / (4 * kPi * D) * std::exp(-st * D);
+        SpotSurfacePoint q;
+        q.point_m = {p[0], p[1], p[2]};
+        q.light = s.light;
+        q.lobe_axis = {n[0], n[1], n[2]};
+        const double thin_d = material().diffuse_albedo / kPi * weight * spot_surface_G_thin(1, q);
+        const V wv = unit(add(v, -1, p));
+        const V rho = add(add({0, 0, 0}, 2 * dot(n, wv), n), -1.0, wv);
+        q.lobe_axis = {rho[0], rho[1], rho[2]};
+        const double thin_s = material().specular_per_sr * weight * spot_surface_G_thin(kExponent, q);
+        EXPECT_NEAR(got.diffuse_scattered, std::min(point.diffuse_scattered, thin_d), 1e-12 * point.diffuse_scattered) << k;
+        EXPECT_NEAR(got.specular_scattered, std::min(point.specular_scattered, thin_s), 1e-12 * point.specular_scattered)
+            << k;
+        below += thin_d < point.diffuse_scattered;
+    }
+    EXPECT_GT(below, 20); // the thin beam's term is the smaller one for most points
+}
+
+// The fixed rule against the exact G^spot_n at zero optical depth, where the spot's term is not
+// negligible (over 1 % of the point light's).
+TEST(SpotSurfaceThinBeam, FixedRuleMatchesTheExactIntegralWithoutExtinction) {
+    Random r(77);
+    for (int n : {1, kExponent}) {
+        std::vector<double> errors;
+        for (int k = 0; k < (n == 1 ? 40 : 16); ++k) {
+            const double outer = r.u(0.05, 2.5), inner = (k % 3 == 0) ? outer : r.u(0.0, outer);
+            const SpotSurfaceLighting s = random_lighting(r, outer, inner, r.u(0.0, std::min(kPi, 2.0 * outer)), 3.0);
+            SpotSurfacePoint q;
+            q.point_m = {s.point_m[0], s.point_m[1], s.point_m[2]};
+            q.light = s.light;
+            q.lobe_axis = {s.normal[0], s.normal[1], s.normal[2]};
+            const double exact = spot_surface_G_exact(n, q);
+            SpotSurfacePoint point = q;
+            point.light.outer_angle_rad = point.light.inner_angle_rad = kPi;
+            if (!(exact > 0.01 * spot_surface_G_thin(n, point))) continue;
+            errors.push_back(std::fabs(spot_surface_G_thin(n, q) / exact - 1.0));
+        }
+        ASSERT_GT(errors.size(), 8u);
+        std::sort(errors.begin(), errors.end());
+        std::printf("thin-beam rule vs exact at sigma = 0, n = %d: %zu points, median %.1e, max %.1e\n", n, errors.size(),
+                    errors[errors.size() / 2], errors.back());
+        EXPECT_LE(errors.back(), 0.03) << n;
+    }
+}
+
+// Where the model claims to hold: σ_t D θ_o ≤ 0.02 (a thin medium, or a narrow beam), P anywhere
+// (inside, band, outside), random normals: E_ss within 10 % where it is over 5 % of the point
+// light's, and within 3 % of the point light's term everywhere (measured: printed).
+TEST(SpotSurfaceThinBeam, HoldsForThinMediaAndNarrowBeams) {
+    Random r(99);
+    double worst_rel = 0.0, worst_scaled = 0.0;
+    for (int k = 0; k < 24; ++k) {
+        const double outer = r.u(0.05, 1.0), inner = (k % 3 == 0) ? outer : r.u(0.0, outer);
+        const double D = r.u(1.0, 20.0), sigma_t = r.u(0.001, 0.02) / (outer * D);
+        const SpotSurfaceLighting s = random_lighting(r, outer, inner, r.u(0.0, std::min(kPi, 2.0 * outer)), D);
+        const SurfaceRadiance point = surface_radiance_exact(as_point_light(s), 0.9 * sigma_t, 0.1 * sigma_t, material(0.7, 0.0));
+        const SurfaceRadiance exact = spot_surface_radiance_exact(s, 0.9 * sigma_t, 0.1 * sigma_t, material(0.7, 0.0));
+        const double ratio = thin_over_exact(s, 0.9 * sigma_t, 0.1 * sigma_t);
+        const double scaled = std::fabs(ratio - 1.0) * exact.diffuse_scattered / point.diffuse_scattered;
+        worst_scaled = std::max(worst_scaled, scaled);
+        EXPECT_LE(scaled, 0.03) << k;
+        if (exact.diffuse_scattered > 0.05 * point.diffuse_scattered) {
+            worst_rel = std::max(worst_rel, std::fabs(ratio - 1.0));
+            EXPECT_LE(std::fabs(ratio - 1.0), 0.10) << k;
+        }
+    }
+    std::printf("thin beam, sigma_t D theta_o <= 0.02: E_ss worst relative error %.3f (where over 5 %% of the point "
+                "light's), worst error / point light's term %.4f\n", worst_rel, worst_scaled);
+}
+
+TEST(SpotSurfaceThinBeam, RefusesBadInput) {
+    Random r(1);
+    const SpotSurfaceLighting s = random_lighting(r, 0.5, 0.3, 0.2, 2.0);
+    SpotSurfacePoint q;
+    q.point_m = {s.point_m[0], s.point_m[1], s.point_m[2]};
+    q.light = s.light;
+    EXPECT_THROW(spot_surface_G_thin(0, q), std::invalid_argument);
+    EXPECT_THROW(spot_surface_thin_factor(1, q, -1.0), std::invalid_argument);
+    EXPECT_THROW(spot_surface_thin_factor(1, q, std::numeric_limits<double>::infinity()), std::invalid_argument);
+    EXPECT_EQ(spot_surface_thin_factor(1, q, 0.0), 0.0);
+    q.light.inner_angle_rad = 0.6;
+    EXPECT_THROW(spot_surface_G_thin(1, q), std::invalid_argument);
 }
 
 } // namespace

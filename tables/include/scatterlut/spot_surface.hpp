@@ -63,17 +63,32 @@ double spot_surface_specular_exact(const SpotSurfacePoint &q, int exponent);
 // tables), the point light replaced by a spot. θ_P is the spot angle of P (between the spot's
 // axis and the direction FROM THE LIGHT TO P), f(θ_P) its falloff (spot_falloff_at_point).
 //
-//   direct terms   k_d/π E_d, k_s P_d:  the point light's, times f(θ_P)      (exact: the light
-//                                        sends I0 f(θ_P) towards P)
-//   scattered terms k_d/π E_ss, k_s S_n: the point light's (G from the surface_G tables),
-//                                        times f(θ_P)                         (the approximation)
-//
-// The scattered factor is the simplest one and is far off where the beam is narrow: inside
-// it f = 1 keeps the point light's E_ss, which gathers scattered light from the whole sphere
-// around the light while the spot lights only its cone (several times too bright for a narrow
-// beam in thin fog), and outside it f = 0 drops the glow the beam scatters onto the surface.
-// docs/SPOT.md ("Surfaces lit by a spot") gives its measured error and where it fails
-// (`scatterlut report` measures it on a scene's spot-lit surfaces).
+//   direct terms    k_d/π E_d, k_s P_d:  the point light's times f(θ_P)  (exact: the lamp sends
+//                                         I0 f(θ_P) towards P)
+//   scattered terms k_d/π E_ss, k_s S_n: the point light's (G_n(T, θ) from the surface_G tables)
+//                                         times a factor F, an approximation (SpotScatterModel):
+//     falloff    F = f(θ_P). One multiplication; right only for beams nearly as wide as a point
+//                light. Inside a narrow beam it keeps all of the point light's scattered light,
+//                which comes from the whole medium around the lamp (several times too bright);
+//                outside the beam it drops the glow the beam scatters onto the surface.
+//     thin_beam  F = min(1, e^{−T} G^spot_n(T = 0)/G_n(T, θ)), G^spot_n(T = 0) by
+//                spot_surface_G_thin. Exact as σ_t D → 0 and while every scattered path through
+//                the beam is about D long (σ_t D θ_o small); beyond that too bright. Up to
+//                16 × 3 × 6 closed-form evaluations per term.
+// docs/SPOT.md ("Surfaces lit by a spot") gives their measured errors and where they fail;
+// `scatterlut report` measures both on a scene's spot-lit surfaces.
+enum class SpotScatterModel { falloff, thin_beam };
+
+// G^spot_n at zero optical depth (the σ's ignored) by the fixed rule of the thin-beam model: the
+// χ integral in closed form, 6-point Gauss–Legendre in γ' on each piece between the cones'
+// crossings, 16 azimuths φ' (a full turn, or Gauss–Legendre over the azimuths that meet the
+// beam). Within ~1 % of spot_surface_G_exact at σ = 0 where G is not negligible
+// (test_spot_surface_radiance prints it).
+double spot_surface_G_thin(int exponent, const SpotSurfacePoint &q);
+
+// The thin-beam factor min(1, e^{−σ_t D} spot_surface_G_thin(n, q)/point_G), point_G the point
+// light's G_n(σ_t D, θ) (θ_s for n = 1, θ_r otherwise). 0 for point_G = 0.
+double spot_surface_thin_factor(int exponent, const SpotSurfacePoint &q, double point_G);
 
 // One surface point, one spot light and the viewer, positions in m (SurfaceLighting with a spot).
 struct SpotSurfaceLighting {
@@ -88,11 +103,12 @@ struct SpotSurfaceLighting {
 double spot_falloff_at_point(const SpotLight &light, const double point_m[3]);
 
 // The terms as above, W/(m²·sr), G from the tables (SurfaceTables of surface_radiance.hpp; T
-// beyond a table's axis by quadrature). Throws std::invalid_argument as surface_radiance and
-// for a bad spot (angles outside [0, π], θ_i > θ_o, a zero axis, I0 not finite or < 0). ≥ 0,
-// never NaN.
+// beyond a table's axis by quadrature), the scattered ones by `model`. Throws
+// std::invalid_argument as surface_radiance and for a bad spot (angles outside [0, π],
+// θ_i > θ_o, a zero axis, I0 not finite or < 0). ≥ 0, never NaN.
 SurfaceRadiance spot_surface_radiance(const SurfaceTables &tables, const SpotSurfaceLighting &s, double sigma_s_per_m,
-                                      double sigma_a_per_m, const SurfaceMaterial &m);
+                                      double sigma_a_per_m, const SurfaceMaterial &m,
+                                      SpotScatterModel model = SpotScatterModel::thin_beam);
 
 // The reference: the direct terms as above (exact), the scattered ones from the spot's exact
 // E_ss and S_n (spot_surface_G_exact with n and ρ; milliseconds to a second per term).
@@ -102,7 +118,8 @@ SurfaceRadiance spot_surface_radiance_exact(const SpotSurfaceLighting &s, double
 // Per colour channel (σ_s, σ_a one value per channel; geometry, light and material shared):
 // the total per channel, each the scalar form's.
 Rgb spot_surface_radiance_rgb(const SurfaceTables &tables, const SpotSurfaceLighting &s, const Rgb &sigma_s_per_m,
-                              const Rgb &sigma_a_per_m, const SurfaceMaterial &m);
+                              const Rgb &sigma_a_per_m, const SurfaceMaterial &m,
+                              SpotScatterModel model = SpotScatterModel::thin_beam);
 Rgb spot_surface_radiance_exact_rgb(const SpotSurfaceLighting &s, const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m,
                                     const SurfaceMaterial &m);
 
