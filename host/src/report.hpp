@@ -7,8 +7,8 @@
 //               domain, bytes, ns per lookup;
 //   methods     exact quadrature, the table, the thin-medium and distant-light closed forms
 //               → error distribution of the radiance over the scene's domain against ns per call.
-// Where spot lights light surfaces, a section on the spot's falloff factor against the exact
-// scattered surface terms (report_spot_surfaces.hpp).
+// Where spot lights light surfaces, a section on the engines' approximations of the spot's
+// scattered surface terms against the exact ones (report_spot_surfaces.hpp).
 #pragma once
 
 #include <string>

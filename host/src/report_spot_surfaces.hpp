@@ -1,9 +1,9 @@
 // scatterlut generator — `report`'s section on surfaces lit by spot lights (docs/SPOT.md,
-// "Surfaces lit by a spot"): on the scene's own geometries, the error of the approximation
-// engines use (the point light's scattered terms E_ss and S_n times the falloff f(θ_P) of
-// glTF KHR_lights_punctual) against the spot's exact terms (scatterlut/spot_surface.hpp), by
-// where the surface point lies (inside the inner cone, in the falloff band, outside the beam)
-// and by optical depth; where it fails. Written as Markdown (returned) and a CSV.
+// "Surfaces lit by a spot"): on the scene's own geometries, the error of the two approximations
+// of scatterlut/spot_surface.hpp for the scattered terms E_ss and S_n (the point light's times
+// glTF KHR_lights_punctual's falloff f(θ_P), and the thin-beam model) against the spot's exact
+// terms, by spot, term and where the surface point lies (inside the inner cone, in the falloff
+// band, outside the beam); where they fail. Written as Markdown (returned) and a CSV.
 #pragma once
 
 #include <string>

@@ -410,6 +410,25 @@ TEST(SpotSurfaceThinBeam, HoldsForThinMediaAndNarrowBeams) {
                 "light's), worst error / point light's term %.4f\n", worst_rel, worst_scaled);
 }
 
+// Where it fails: once the beam at P is a sizeable fraction of a mean free path across, light
+// scattered through the beam travels farther than D and the model is too bright (P inside the
+// inner cone, σ_t D θ_o from 0.3 to 1.5; measured median and worst printed).
+TEST(SpotSurfaceThinBeam, TooBrightOnceTheBeamIsThick) {
+    Random r(31);
+    std::vector<double> ratios;
+    for (int k = 0; k < 12; ++k) {
+        const double outer = r.u(0.2, 1.0), inner = r.u(0.5 * outer, outer);
+        const double D = r.u(1.0, 20.0), sigma_t = r.u(0.3, 1.5) / (outer * D);
+        const SpotSurfaceLighting s = random_lighting(r, outer, inner, r.u(0.0, inner), D);
+        ratios.push_back(thin_over_exact(s, 0.9 * sigma_t, 0.1 * sigma_t));
+    }
+    std::sort(ratios.begin(), ratios.end());
+    std::printf("thin beam, sigma_t D theta_o in [0.3, 1.5], P inside: E_ss / exact median %.2f, range %.2f - %.2f\n",
+                ratios[ratios.size() / 2], ratios.front(), ratios.back());
+    EXPECT_GT(ratios[ratios.size() / 2], 1.1);
+    EXPECT_GE(ratios.front(), 0.99); // too bright, never too dark, there
+}
+
 TEST(SpotSurfaceThinBeam, RefusesBadInput) {
     Random r(1);
     const SpotSurfaceLighting s = random_lighting(r, 0.5, 0.3, 0.2, 2.0);
