@@ -45,7 +45,7 @@ void check_spot_surface_point(const SpotSurfacePoint &q);
 //
 // by nested adaptive Gauss–Kronrod: γ' cut where the great circle of φ' crosses the outer and
 // inner cones (closed form), φ' where those circles graze the cones, χ where ℓ·ω changes sign
-// and around a narrow lobe; ~1e-9 relative (measured against surface_G_exact at θ_o = π and
+// and around a narrow lobe; ~1e-8 relative (measured against surface_G_exact at θ_o = π and
 // against a brute-force quadrature over directions of spot_airlight_radiance_exact:
 // tests/kernels/test_spot_surface.cpp prints both). 0 for θ_o = 0. Milliseconds (wide lobes)
 // to a second (n ~ 1000) per call.
