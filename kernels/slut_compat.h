@@ -91,6 +91,8 @@
 #  define SLUT_IN_PLANE_TOLERANCE 1e-6
 #  define SLUT_LOGLIN_MAX_STEPS 60
 #  define SLUT_LOGLIN_CONVERGED 2.4e-7
+#  define SLUT_SPOT_TANGENT_SLACK 1e-6
+#  define SLUT_SPOT_MIN_MISS 1e-12
 /* (1 + cos x)/sin x for x in (0, π/2] from one polynomial sin/cos pair (common.slsl): the
    values of slut_cos and slut_sin, half their work (slut_warp_forward). */
 #  define SLUT_ONE_PLUS_COS_OVER_SIN(x) slut_one_plus_cos_over_sin(x)
@@ -192,6 +194,8 @@ SLUT_FN void slut_check_failed(const char *file, int line, const char *condition
 #define SLUT_IN_PLANE_TOLERANCE 1e-15     /* a unit-vector cosine this far below 0 is 0 (rounding) */
 #define SLUT_LOGLIN_MAX_STEPS 60          /* slut_loglin_inverse: Newton steps at most */
 #define SLUT_LOGLIN_CONVERGED 4e-16       /* slut_loglin_inverse: a relative step this small is the root */
+#define SLUT_SPOT_TANGENT_SLACK 1.8e-15   /* a ray–cone discriminant this far below 0 (8 ulps of its terms): a tangent */
+#define SLUT_SPOT_MIN_MISS 1e-12          /* the spot's band rule: the light's distance from the ray at least this × the scale */
 /* (1 + cos x)/sin x (the ASINH_COT warps' log argument; one sin/cos pair in the shaders). */
 #define SLUT_ONE_PLUS_COS_OVER_SIN(x) ((1.0 + cos(x)) / sin(x))
 

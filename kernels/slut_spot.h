@@ -60,43 +60,102 @@ SLUT_FN double slut_spot_falloff_slope(double vers_theta, double vers_outer, dou
     return -2.0 * (vers_outer - vers_theta) / (width * width);
 }
 
-/* The ray's crossings of the double cone (both nappes, see above) of half-angle α (given as
- * cos α) around the unit axis n with apex L: the real roots t of
- *   A t² + 2 b t + C = 0,  A = (n·d)² − cos²α,  b = (n·d)(n·w0) − cos²α (d·w0),
- *   C = (n·w0)² − cos²α |w0|²,  w0 = o − L = apex_to_origin,  d the unit ray direction,
- * written t[0] ≤ t[1]; returns how many (0, 1 or 2). A and C are formed as products of
- * (x − c)(x + c), the root pair by the cancellation-free q = −(b + sign(b)√(b² − AC)),
- * t = q/A and C/q. A = 0 (d parallel to a generator) leaves the one root −C/(2b); a
- * discriminant that rounding pushed below 0 by at most 8 ulps of its terms is a tangent (a
- * double root), as for α = π/2 where the cone is the plane n·w = 0. */
-SLUT_FN int slut_spot_cone_crossings(slut_vec3 apex_to_origin, slut_vec3 dir, slut_vec3 axis, double cos_alpha,
-                                     SLUT_OUT_ARRAY(double, t, 2)) {
-    double nd = slut_vec3_dot(axis, dir), nw = slut_vec3_dot(axis, apex_to_origin);
-    double dw = slut_vec3_dot(dir, apex_to_origin), ww = slut_vec3_length(apex_to_origin);
-    double c2 = cos_alpha * cos_alpha;
-    double A = (nd - cos_alpha) * (nd + cos_alpha);
-    double b = nd * nw - c2 * dw;
-    double C = (nw - cos_alpha * ww) * (nw + cos_alpha * ww);
-    double disc = b * b - A * C;
-    double scale = b * b + fabs(A * C);
-    t[0] = 0.0;
-    t[1] = 0.0;
-    if (disc < 0.0) {
-        if (disc < -1.8e-15 * scale) return 0; /* 8 ulps */
-        disc = 0.0;
-    }
-    double root = sqrt(disc);
-    double q = -(b + (b >= 0.0 ? root : -root));
-    if (A == 0.0) {
-        if (b == 0.0) return 0; /* the ray lies on the cone or never meets it */
-        t[0] = -C / (2.0 * b);
-        return 1;
-    }
-    if (q == 0.0) return 1; /* b = 0 and C = 0: the double root t = 0 */
-    double r0 = q / A, r1 = C / q;
-    t[0] = fmin(r0, r1);
-    t[1] = fmax(r0, r1);
-    return 2;
+/* ------------------------------------------------------------------ the ray and the cone
+ *
+ * The ray x = o + t d (d unit) is written from its closest approach to the light:
+ * x − L = e + τ d, τ = t − t*, t* = d·(L − o), e ⊥ d the vector from the light to the foot of
+ * the perpendicular, h = |e| (the light's distance from the ray's line), ê = e/h. A cone of
+ * half-angle α ≤ π/2 around a unit axis m is written by the versine ν = vers α ∈ [0, 1] and the
+ * versines of d and ê about m, ν_d = |d − m|²/2 and ν_e = |ê − m|²/2 (so m·d = 1 − ν_d,
+ * m·e = h (1 − ν_e), cos α = 1 − ν). The squared cone equation (m·w)² = cos²α |w|² in τ is
+ *
+ *   A τ² + 2 B τ + C = 0,   A = (m·d)² − cos²α = (ν − ν_d)(2 − ν − ν_d),
+ *                           B = (m·e)(m·d),
+ *                           C = (m·e)² − cos²α h² = h² (ν − ν_e)(2 − ν − ν_e):
+ *
+ * both differences of squares are products of versine differences, which keep their digits
+ * for narrow cones (1 − cos α from a cosine would not: θ_o = 1e-3 has vers 5e-7, below
+ * float's rounding of 1). Its roots lie on the double cone (both nappes: the one around m
+ * and its mirror around −m; for α = π/2 the plane m·w = 0). */
+
+/* The real roots τ[0] ≤ τ[1] of the quadratic above; returns how many (0, 1 or 2). The pair by
+ * the cancellation-free q = −(B + sign(B)√(B² − AC)), τ = q/A and C/q, each clamped to
+ * ±SLUT_INFINITE_ABOVE (A → 0: the ray nearly parallel to a generator sends one root there).
+ * A = 0 leaves the one root −C/(2B) (= C/q); a discriminant that rounding pushed below 0 by at
+ * most SLUT_SPOT_TANGENT_SLACK of its terms is a tangent (a double root). Written with selects
+ * only (no branch: the GPU snippets run it for every pixel). */
+SLUT_FN int slut_spot_cone_roots(double nu, double nu_d, double nu_e, double miss, SLUT_OUT_ARRAY(double, tau, 2)) {
+    double mu_d = 1.0 - nu_d, mu_e = miss * (1.0 - nu_e);
+    double A = (nu - nu_d) * (2.0 - nu - nu_d);
+    double B = mu_e * mu_d;
+    double C = (miss * miss) * ((nu - nu_e) * (2.0 - nu - nu_e));
+    double disc = B * B - A * C;
+    int real = (disc >= -SLUT_SPOT_TANGENT_SLACK * (B * B + fabs(A * C))) ? 1 : 0;
+    double root = sqrt(fmax(disc, 0.0));
+    double q = -(B + ((B >= 0.0) ? root : -root));
+    double r0 = (fabs(q) < SLUT_INFINITE_ABOVE * fabs(A)) ? q / A : (((q > 0.0) == (A > 0.0)) ? SLUT_INFINITE_ABOVE : -SLUT_INFINITE_ABOVE);
+    double r1 = (q != 0.0) ? slut_clamp(C / q, -SLUT_INFINITE_ABOVE, SLUT_INFINITE_ABOVE) : 0.0;
+    /* A = 0 && B = 0: the ray lies on the cone or never meets it; q = 0 (B = 0, C = 0): τ = 0 */
+    int n = (real == 0) ? 0 : ((A == 0.0) ? ((B == 0.0) ? 0 : 1) : ((q == 0.0) ? 1 : 2));
+    tau[0] = (n == 2) ? fmin(r0, r1) : ((n == 1) ? r1 : 0.0);
+    tau[1] = (n == 2) ? fmax(r0, r1) : tau[0];
+    return n;
+}
+
+/* A cone of the spot (the outer or the inner one, half-angle α ∈ [0, π]) as the convex cone its
+ * edge bounds: for α ≤ π/2 the lit side {θ ≤ α} itself (axis +n, the lit side is convex); for
+ * α > π/2 the dark side {θ ≥ α}, the cone of half-angle π − α around −n. nu: the versine of the
+ * convex cone's half-angle (2 sin²(α/2), or 2 cos²(α/2) for the dark side: no 2 − vers α), 0 for
+ * α = 0 and α ≥ π (a cone of no solid angle: a ray); axis_sign: +1 (lit side) or −1 (dark). */
+SLUT_STRUCT_BEGIN(slut_spot_cone)
+    double nu;
+    double axis_sign;
+SLUT_STRUCT_END(slut_spot_cone);
+
+SLUT_FN slut_spot_cone slut_spot_cone_of(double angle_rad) {
+    slut_spot_cone c;
+    double s = sin(0.5 * angle_rad), co = cos(0.5 * angle_rad);
+    int lit = (angle_rad > 0.5 * SLUT_PI) ? 0 : 1;
+    c.axis_sign = (lit != 0) ? 1.0 : -1.0;
+    c.nu = (angle_rad >= SLUT_PI) ? 0.0 : ((lit != 0) ? 2.0 * s * s : 2.0 * co * co);
+    return c;
+}
+
+/* The part of the ray's line inside a convex cone (a convex set: an interval, maybe unbounded)
+ * in τ, from the roots above: lo = hi = +SLUT_INFINITE_ABOVE when empty (a cone of ν = 0 too),
+ * ∓SLUT_INFINITE_ABOVE for an unbounded end. Which part of the line lies inside follows from
+ * A's sign: A < 0 (|m·d| < cos α: the direction outside the cone's) bounds the part between the
+ * roots, which lies in the cone around m where m·e > 0 (the line's point nearest the axis there,
+ * τ = −B/A, has m·w = (m·e) cos²α/(−A)); A ≥ 0 (the direction within it) leaves a ray on each
+ * nappe, the one around m on the side m·d points to. A line through the apex (h = 0) has the
+ * double root τ = 0. */
+SLUT_STRUCT_BEGIN(slut_spot_span)
+    double lo;
+    double hi;
+SLUT_STRUCT_END(slut_spot_span);
+
+SLUT_FN slut_spot_span slut_spot_convex_span(double nu, double nu_d, double nu_e, double miss) {
+    slut_spot_span j;
+    double tau[2];
+    int n = slut_spot_cone_roots(nu, nu_d, nu_e, miss, tau);
+    double mu_d = 1.0 - nu_d, mu_e = miss * (1.0 - nu_e);
+    double A = (nu - nu_d) * (2.0 - nu - nu_d);
+    double B = mu_e * mu_d;
+    /* no real root with A > 0 is rounding near the apex: the vertex −B/A stands for both */
+    double vertex = (fabs(B) < SLUT_INFINITE_ABOVE * fabs(A)) ? -B / A : 0.0;
+    double near_root = (n == 0) ? vertex : tau[0];
+    double far_root = (n == 2) ? tau[1] : near_root;
+    int between = (A < 0.0 && n == 2 && mu_e > 0.0) ? 1 : 0; /* the part between the roots */
+    int in_plane = (A == 0.0 && mu_d == 0.0) ? 1 : 0;         /* α = π/2, d in the plane: all or nothing */
+    int one_ray = (A > 0.0 || (A == 0.0 && mu_d != 0.0 && mu_e > 0.0)) ? 1 : 0; /* A = 0: a generator's direction */
+    double lo = (one_ray != 0) ? ((mu_d > 0.0) ? far_root : -SLUT_INFINITE_ABOVE) : SLUT_INFINITE_ABOVE;
+    double hi = (one_ray != 0) ? ((mu_d > 0.0) ? SLUT_INFINITE_ABOVE : near_root) : SLUT_INFINITE_ABOVE;
+    lo = (in_plane != 0) ? ((mu_e > 0.0) ? -SLUT_INFINITE_ABOVE : SLUT_INFINITE_ABOVE) : lo;
+    lo = (between != 0) ? tau[0] : lo;
+    hi = (between != 0) ? tau[1] : hi;
+    j.lo = (nu > 0.0) ? lo : SLUT_INFINITE_ABOVE;
+    j.hi = (nu > 0.0) ? hi : SLUT_INFINITE_ABOVE;
+    return j;
 }
 
 #endif /* SLUT_SPOT_H */

@@ -77,6 +77,9 @@ double AirlightRationalTable::radiance(const AirlightQuery &q) const {
     const slut_airlight_rational_setup r = slut_airlight_rational_setup_of(
         q.sigma_s_per_m, q.sigma_a_per_m, q.intensity_W_per_sr, q.distance_m, 2.0 * sin_half * cos_half,
         SLUT_AIRLIGHT_COS_GAMMA(sin_half, cos_half), q.length_m);
+    // Zero or divergent radiance needs no sample (and its coordinates may be 0/0: γ = 0 at a
+    // distance whose h = D·SLUT_TINY underflows).
+    if (r.kind != 0) return slut_airlight_rational_radiance(r, 1.0, 1.0);
     return slut_airlight_rational_radiance(r, sample(r.x_m2, r.x_t2), sample(r.x_m1, r.x_t1));
 }
 

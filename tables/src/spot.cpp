@@ -102,6 +102,25 @@ void check_spot_query(const SpotQuery &q) {
             "intensity must be finite and >= 0 (W/sr)");
 }
 
+SpotQuery spot_query_from_points(const double viewer_m[3], const double view_dir[3], const double light_m[3],
+                                 const double spot_dir[3], double outer_angle_rad, double inner_angle_rad,
+                                 double length_m, double sigma_s_per_m, double sigma_a_per_m,
+                                 double intensity_W_per_sr) {
+    SpotQuery q;
+    q.sigma_s_per_m = sigma_s_per_m;
+    q.sigma_a_per_m = sigma_a_per_m;
+    q.viewer_m = {viewer_m[0], viewer_m[1], viewer_m[2]};
+    q.view_dir = {view_dir[0], view_dir[1], view_dir[2]};
+    q.length_m = length_m;
+    q.light.position_m = {light_m[0], light_m[1], light_m[2]};
+    q.light.direction = {spot_dir[0], spot_dir[1], spot_dir[2]};
+    q.light.outer_angle_rad = outer_angle_rad;
+    q.light.inner_angle_rad = inner_angle_rad;
+    q.light.intensity_W_per_sr = intensity_W_per_sr;
+    check_spot_query(q);
+    return q;
+}
+
 SpotRay spot_ray_pieces(const SpotQuery &q) {
     check_spot_query(q);
     SpotRay r;
@@ -134,13 +153,20 @@ SpotRay spot_ray_pieces(const SpotQuery &q) {
     std::vector<double> breaks{0.0};
     if (std::isfinite(s)) breaks.push_back(s);
     if (tc > 0.0 && tc < s) breaks.push_back(tc);
-    const double cone_vers[2] = {r.vers_outer, r.vers_inner};
+    const double cone_angle[2] = {q.light.outer_angle_rad, q.light.inner_angle_rad};
     for (int c = 0; c < (r.vers_inner > 0.0 && r.vers_inner < r.vers_outer ? 2 : 1); ++c) {
-        if (!(cone_vers[c] < 2.0)) continue; // θ = π: no edge
+        // The edge as the convex cone it bounds (slut_spot_cone_of: its versine and axis ±n);
+        // the roots in τ = t − t* (slut_spot_cone_roots: versine differences, both nappes).
+        const slut_spot_cone cone = slut_spot_cone_of(std::fmin(cone_angle[c], kPi));
+        if (!(cone.nu > 0.0)) continue; // θ = π: no edge
+        const Vec3 m = combine(cone.axis_sign, r.axis, 0.0, r.axis);
         double roots[2];
-        const int n = slut_spot_cone_crossings(vec(light_to_viewer), vec(r.dir), vec(r.axis), 1.0 - cone_vers[c], roots);
-        for (int k = 0; k < n; ++k)
-            if (roots[k] > 0.0 && roots[k] < s && std::isfinite(roots[k])) breaks.push_back(roots[k]);
+        const int n = slut_spot_cone_roots(cone.nu, slut_spot_versine_of(vec(r.dir), vec(m)),
+                                           slut_spot_versine_of(vec(r.unit_foot), vec(m)), r.miss_distance_m, roots);
+        for (int k = 0; k < n; ++k) {
+            const double t = tc + roots[k];
+            if (t > 0.0 && t < s && std::fabs(roots[k]) < SLUT_INFINITE_ABOVE) breaks.push_back(t);
+        }
     }
     std::sort(breaks.begin(), breaks.end());
     breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());

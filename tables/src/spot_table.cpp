@@ -17,6 +17,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 extern "C" {
 #include "slut_gauss_legendre.h"
@@ -136,6 +138,50 @@ Rgb spot_airlight_radiance_rgb(const AirlightHgTable &table, const SpotQuery &q,
                                const Rgb &sigma_a_per_m) {
     return per_channel(q, sigma_s_per_m, sigma_a_per_m,
                        [&table](const SpotQuery &one) { return spot_from_table(table, one); });
+}
+
+// ---------------------------------------------------------------- batches
+namespace {
+// Every query checked before the first is computed (the first bad one named by its index).
+// The RGB forms check each query's geometry with the batch's medium (its own σ fields unread).
+void check_spot_queries(const SpotQuery *queries, size_t count, const Rgb *sigma_s = nullptr,
+                        const Rgb *sigma_a = nullptr) {
+    for (size_t i = 0; i < count; ++i) {
+        try {
+            SpotQuery q = queries[i];
+            if (sigma_s) {
+                check_rgb_coefficients(*sigma_s, *sigma_a);
+                q.sigma_s_per_m = (*sigma_s)[0];
+                q.sigma_a_per_m = (*sigma_a)[0];
+            }
+            check_spot_query(q);
+        } catch (const std::invalid_argument &e) {
+            throw std::invalid_argument("query " + std::to_string(i) + ": " + e.what());
+        }
+    }
+}
+} // namespace
+
+void spot_airlight_radiance(const AirlightTable &table, const SpotQuery *queries, size_t count, double *out) {
+    check_spot_queries(queries, count);
+    for (size_t i = 0; i < count; ++i) out[i] = spot_airlight_radiance(table, queries[i]);
+}
+
+void spot_airlight_radiance(const AirlightHgTable &table, const SpotQuery *queries, size_t count, double *out) {
+    check_spot_queries(queries, count);
+    for (size_t i = 0; i < count; ++i) out[i] = spot_airlight_radiance(table, queries[i]);
+}
+
+void spot_airlight_radiance_rgb(const AirlightTable &table, const SpotQuery *queries, size_t count,
+                                const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m, Rgb *out) {
+    check_spot_queries(queries, count, &sigma_s_per_m, &sigma_a_per_m);
+    for (size_t i = 0; i < count; ++i) out[i] = spot_airlight_radiance_rgb(table, queries[i], sigma_s_per_m, sigma_a_per_m);
+}
+
+void spot_airlight_radiance_rgb(const AirlightHgTable &table, const SpotQuery *queries, size_t count,
+                                const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m, Rgb *out) {
+    check_spot_queries(queries, count, &sigma_s_per_m, &sigma_a_per_m);
+    for (size_t i = 0; i < count; ++i) out[i] = spot_airlight_radiance_rgb(table, queries[i], sigma_s_per_m, sigma_a_per_m);
 }
 
 } // namespace scatterlut

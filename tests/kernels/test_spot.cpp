@@ -22,25 +22,24 @@
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 
 #include "scatterlut/spot.hpp"
+#include "spot_geometry.hpp"
 
 namespace {
 
 using scatterlut::SpotQuery;
 using scatterlut::Vec3;
 
-constexpr double kPi = 3.14159265358979323846;
+using spot_geometry::kPi;
 
 double rel(double a, double b) {
     if (a == b) return 0.0;
     return std::fabs(a - b) / std::fabs(b);
 }
-double dot(const Vec3 &a, const Vec3 &b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 add(const Vec3 &a, double k, const Vec3 &b) { return {a[0] + k * b[0], a[1] + k * b[1], a[2] + k * b[2]}; }
-Vec3 cross(const Vec3 &a, const Vec3 &b) {
-    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double norm(const Vec3 &a) { return std::sqrt(dot(a, a)); }
-Vec3 unit(const Vec3 &a) { return add({0, 0, 0}, 1.0 / norm(a), a); }
+using spot_geometry::dot;
+using spot_geometry::add;
+using spot_geometry::cross;
+using spot_geometry::norm;
+using spot_geometry::unit;
 
 // ---------------------------------------------------------------- the reference
 struct Reference {
@@ -121,49 +120,10 @@ double reference(const SpotQuery &q, double g) {
 }
 
 // ---------------------------------------------------------------- random geometries
-// Class k % 4: the viewer inside the beam, beside it, on (near) the axis looking along it, or in
-// the beam looking away from the light (the apex behind the viewer); every third ray infinite;
-// k % 5 == 0 a hard cone.
-struct Geometry {
-    SpotQuery q;
-    double g;
-    int kind;
-};
-
-Geometry random_geometry(std::mt19937_64 &rng, int k) {
-    std::uniform_real_distribution<double> U(0.0, 1.0);
-    auto random_unit = [&] {
-        for (;;) {
-            const Vec3 v{2 * U(rng) - 1, 2 * U(rng) - 1, 2 * U(rng) - 1};
-            if (norm(v) > 0.1 && norm(v) <= 1) return unit(v);
-        }
-    };
-    Geometry G;
-    G.kind = k % 4;
-    SpotQuery &q = G.q;
-    q.sigma_s_per_m = 0.01 + 0.5 * U(rng);
-    q.sigma_a_per_m = (k % 7 == 0) ? 0.0 : 0.3 * U(rng);
-    G.g = -0.3 + 1.15 * U(rng);
-    q.light.position_m = {10 * U(rng) - 5, 10 * U(rng) - 5, 10 * U(rng) - 5};
-    const Vec3 n = random_unit();
-    q.light.direction = add({0, 0, 0}, 0.5 + 3 * U(rng), n); // not unit: the library normalises
-    q.light.outer_angle_rad = 0.05 + 2.7 * U(rng);
-    q.light.inner_angle_rad = (k % 5 == 0) ? q.light.outer_angle_rad : q.light.outer_angle_rad * 0.95 * U(rng);
-    const Vec3 perp = unit(cross(n, random_unit()));
-    const double r = 0.5 + 15 * U(rng), to = q.light.outer_angle_rad;
-    double a = 0; // the viewer's spot angle
-    if (G.kind == 0 || G.kind == 3) a = to * 0.9 * U(rng);
-    else if (G.kind == 1) a = std::fmin(to + 0.05 + (kPi - to) * U(rng), kPi - 0.01);
-    else a = 1e-3 * U(rng);
-    q.viewer_m = add(add(q.light.position_m, r * std::cos(a), n), r * std::sin(a), perp);
-    const Vec3 from_light = unit(add(q.viewer_m, -1.0, q.light.position_m));
-    if (G.kind == 2) q.view_dir = unit(add(add({0, 0, 0}, (k % 8 < 4) ? 1.0 : -1.0, n), 0.02 * U(rng), random_unit()));
-    else q.view_dir = random_unit();
-    if (G.kind == 3 && dot(q.view_dir, from_light) < 0) q.view_dir = add({0, 0, 0}, -1.0, q.view_dir);
-    q.length_m = (k % 3 == 0) ? std::numeric_limits<double>::infinity() : 0.2 + 40 * U(rng);
-    q.light.intensity_W_per_sr = 0.5 + 10 * U(rng);
-    return G;
-}
+// (spot_geometry.hpp: the viewer inside the beam, beside it, on (near) the axis looking along
+// it, or in the beam looking away from the light; every third ray infinite; k % 5 == 0 a hard cone)
+using spot_geometry::Geometry;
+using spot_geometry::random_geometry;
 
 TEST(SpotAirlight, ExactMatchesBoostQuadratureOnRandomGeometries) {
     std::mt19937_64 rng(20240532);

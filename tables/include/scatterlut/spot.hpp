@@ -14,6 +14,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <functional>
 #include <vector>
 
@@ -49,6 +50,15 @@ struct SpotQuery {
     double length_m = 0;        // s ≥ 0, +inf allowed
     SpotLight light;
 };
+
+// The query from positions and directions as plain arrays (as airlight_query_from_points): the
+// viewer, the view direction, the light's position and the beam's axis (directions need not be
+// unit, ≠ 0), the cone half-angles (rad), the ray's length (m, +inf allowed), the medium and I0
+// on the axis. Checked (check_spot_query: std::invalid_argument naming the first bad field).
+SpotQuery spot_query_from_points(const double viewer_m[3], const double view_dir[3], const double light_m[3],
+                                 const double spot_dir[3], double outer_angle_rad, double inner_angle_rad,
+                                 double length_m, double sigma_s_per_m, double sigma_a_per_m,
+                                 double intensity_W_per_sr);
 
 // Throws std::invalid_argument naming the first bad field: NaN or infinite coordinates, a zero
 // view_dir or direction, angles outside [0, π] or inner > outer, negative σ, I0 or length.
@@ -106,11 +116,30 @@ Rgb spot_airlight_radiance_rgb(const AirlightTable &table, const SpotQuery &q, c
 Rgb spot_airlight_radiance_rgb(const AirlightHgTable &table, const SpotQuery &q, const Rgb &sigma_s_per_m,
                                const Rgb &sigma_a_per_m);
 
+// The same for `count` queries: out[i] is the scalar call's result for queries[i], bit for bit
+// (the same function, query by query). Every query is checked before anything is written: a bad
+// one throws std::invalid_argument naming its index and field, and `out` is left as it was.
+// The RGB forms take one medium for the whole batch (per channel, as the scalar RGB calls).
+void spot_airlight_radiance(const AirlightTable &table, const SpotQuery *queries, size_t count, double *out);
+void spot_airlight_radiance(const AirlightHgTable &table, const SpotQuery *queries, size_t count, double *out);
+void spot_airlight_radiance_rgb(const AirlightTable &table, const SpotQuery *queries, size_t count,
+                                const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m, Rgb *out);
+void spot_airlight_radiance_rgb(const AirlightHgTable &table, const SpotQuery *queries, size_t count,
+                                const Rgb &sigma_s_per_m, const Rgb &sigma_a_per_m, Rgb *out);
+
 namespace detail {
 // The table path with any point-light radiance in place of a table's (the tests pass the exact
 // airlight_radiance_exact to measure the band rule's own error).
 using PointLightRadiance = std::function<double(const AirlightQuery &)>;
 double spot_airlight_radiance_from(const PointLightRadiance &point_radiance, const SpotQuery &q);
+
+// The GPU snippets' rule (kernels/slut_spot_rule.h; docs/SPOT.md "On the GPU") in double: the
+// lit intervals, one point-light radiance each (point_radiance: the tier's, AirlightRationalTable
+// or AirlightTable or AirlightHgTable, or the exact airlight to measure the rule itself), the
+// falloff band by its 4-point rule with the phase of phase_g. The tests' reference for the
+// snippets' spot entry points on the same inputs. q checked (check_spot_query).
+double spot_airlight_radiance_gpu_rule(const PointLightRadiance &point_radiance, const SpotQuery &q,
+                                       double phase_g = 0.0);
 } // namespace detail
 
 } // namespace scatterlut
