@@ -160,7 +160,7 @@ SLUT_FN slut_spot_interval slut_spot_interval_of(slut_spot_ray r) {
     iv.band0_hi = (r.inner_lit != 0) ? ilo : dark_mid;
     iv.band1_lo = (r.inner_lit != 0) ? ihi : dark_mid;
     iv.band1_hi = (r.inner_lit != 0) ? hi : ihi;
-    iv.has_core = ((r.inner_lit != 0) ? (ihi > ilo) : (ilo > lo || ihi < hi)) ? 1 : 0;
+    iv.has_core = ((r.inner_lit != 0) ? (ihi > ilo) : (ilo > lo || hi > ihi)) ? 1 : 0;
     /* A ray that misses the inner cone has all of I in D, where f rises and falls again: cut it
      * where f peaks, so that both pieces are monotone. Along the line m_o·ŵ = (m_o·d) sin φ +
      * (m_o·ê) cos φ (t = t* + h tan φ) is extreme at tan φ = a'/b' (a' = ±m_o·d, b' = ±m_o·ê, the
