@@ -98,6 +98,8 @@ std::vector<float> make_scene(int width, int height) {
     return geo;
 }
 
+} // namespace
+
 // The airlight_rational table for a radiance target: the smallest square of kSizes whose
 // measured interpolation error (measure_airlight_rational_sampling, 20000 points) times the
 // difference's gain 2G − 1 is within the target, generated on the OpenCL device as `scatterlut
@@ -118,7 +120,14 @@ scatterlut::Table rational_table(scatterlut::Device &device, double radiance_tar
     return table;
 }
 
-} // namespace
+// The default airlight_F table, as `scatterlut generate` makes it (f32 storage).
+scatterlut::Table airlight_F_table(scatterlut::Device &device) {
+    const scatterlut::AirlightPlan plan;
+    scatterlut::Table table = scatterlut::make_airlight_table_layout(plan);
+    table.values = scatterlut::integrate_airlight_ln_gs(device, table);
+    for (double &v : table.values) v = scatterlut::round_to_storage(v, plan.storage);
+    return table;
+}
 
 int run_airlight_scene(const gpu_harness::Gl &gl, const Options &opt) {
     std::string compare_text;
@@ -129,12 +138,9 @@ int run_airlight_scene(const gpu_harness::Gl &gl, const Options &opt) {
             return 1;
         }
     }
-    // The default airlight_F table, as `scatterlut generate` makes it (f32 storage).
     scatterlut::Device device("");
     const scatterlut::AirlightPlan plan;
-    scatterlut::Table table = scatterlut::make_airlight_table_layout(plan);
-    table.values = scatterlut::integrate_airlight_ln_gs(device, table);
-    for (double &v : table.values) v = scatterlut::round_to_storage(v, plan.storage);
+    const scatterlut::Table table = airlight_F_table(device);
     const int u_count = table.axes[0].map.count, w_count = table.axes[1].map.count;
 
     // The plain F table of Sun et al. 2005 from the exact F.

@@ -1,17 +1,21 @@
 // scatterlut_gpu_bench: the GPU per-pixel cost and accuracy of the sampling snippets' tiers
 // against the per-pixel forms engines use today, on a GPU through a surfaceless EGL context
-// (Mesa llvmpipe where there is none; host/src/egl_context.hpp). Two scenes (gpu_bench.hpp):
+// (Mesa llvmpipe where there is none; host/src/egl_context.hpp). Three scenes (gpu_bench.hpp):
 //   airlight   a foggy street, every 32 x 32 tile its own lamp (bench_gpu_airlight.cpp):
 //              fast, accurate, airlight_F, sun2005, closed, inputs;
+//   spot       the same street, every lamp a spot light (bench_gpu_spot.cpp): the point light and
+//              the spot in each tier (fast / spot_fast, accurate / spot_accurate, airlight_F /
+//              spot_airlight_F), inputs;
 //   nearlight  a translucent floor lit by lamps above it (bench_gpu_nearlight.cpp):
 //              nearlight_fast, nearlight_accurate, thin, inputs.
 // Every cost is a ratio per round to a baseline drawn in the same round; errors are per pixel
 // against exact double quadrature. bench/README.md, "GPU snippet tiers", has the figures.
 //
-// Usage: scatterlut_gpu_bench [--scene airlight|nearlight|all] [--width N] [--height N]
+// Usage: scatterlut_gpu_bench [--scene airlight|spot|nearlight|all] [--width N] [--height N]
 //                             [--frames N] [--rounds N] [--stride N] [--compare-snippet FILE]
 // --compare-snippet adds a method "compare" to the airlight scene: FILE (another
-// scatterlut_airlight.glsl, e.g. one generated before a change) the way airlight_F runs.
+// scatterlut_airlight.glsl, e.g. one generated before a change) the way airlight_F runs; and
+// "spot_compare" to the spot scene: FILE's spot the way spot_fast runs.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -29,7 +33,7 @@ bool parse_int(const char *text, int lo, int hi, int *out) {
 }
 
 int usage_error(const std::string &what) {
-    std::fprintf(stderr, "scatterlut_gpu_bench: %s\nusage: scatterlut_gpu_bench [--scene airlight|nearlight|all] "
+    std::fprintf(stderr, "scatterlut_gpu_bench: %s\nusage: scatterlut_gpu_bench [--scene airlight|spot|nearlight|all] "
                          "[--width 16..8192] [--height 16..8192] [--frames 1..1000] [--rounds 1..1000] "
                          "[--stride 1..1000000] [--compare-snippet FILE]\n",
                  what.c_str());
@@ -47,11 +51,12 @@ int main(int argc, char **argv) {
             const std::string v = argv[++k];
             if (a == "--compare-snippet") {
                 opt.compare_snippet = v;
-            } else if (v == "airlight" || v == "nearlight" || v == "all") {
-                opt.airlight = v != "nearlight";
-                opt.nearlight = v != "airlight";
+            } else if (v == "airlight" || v == "spot" || v == "nearlight" || v == "all") {
+                opt.airlight = v == "airlight" || v == "all";
+                opt.spot = v == "spot" || v == "all";
+                opt.nearlight = v == "nearlight" || v == "all";
             } else {
-                return usage_error("--scene: expected airlight, nearlight or all, got '" + v + "'");
+                return usage_error("--scene: expected airlight, spot, nearlight or all, got '" + v + "'");
             }
             continue;
         }
@@ -77,6 +82,7 @@ int main(int argc, char **argv) {
     const char *threads = std::getenv("LP_NUM_THREADS");
     std::printf("renderer: %s (LP_NUM_THREADS=%s)\n", context.renderer.c_str(), threads ? threads : "unset");
     if (opt.airlight && gpu_bench::run_airlight_scene(context.gl, opt) != 0) return 1;
+    if (opt.spot && gpu_bench::run_spot_scene(context.gl, opt) != 0) return 1;
     if (opt.nearlight && gpu_bench::run_nearlight_scene(context.gl, opt) != 0) return 1;
     return 0;
 }

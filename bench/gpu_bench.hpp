@@ -21,13 +21,18 @@
 #include <vector>
 
 #include "gpu_pixel_passes.hpp"
+#include "scatterlut/table.hpp"
+
+namespace scatterlut {
+class Device;
+}
 
 namespace gpu_bench {
 
 struct Options {
     int width = 1920, height = 1080, frames = 5, rounds = 7, stride = 4;
     std::string compare_snippet; // another scatterlut_airlight.glsl, run as method "compare"
-    bool airlight = true, nearlight = true;
+    bool airlight = true, spot = true, nearlight = true;
 };
 
 inline std::string read_text(const std::string &path) {
@@ -105,8 +110,17 @@ inline void print_table(const std::vector<Method> &methods, const std::vector<st
     }
 }
 
-// Both scenes (bench_gpu_airlight.cpp, bench_gpu_nearlight.cpp): 0, or 1 after printing why not.
+// The airlight tables the airlight scenes share (bench_gpu_airlight.cpp): the airlight_rational
+// table for a radiance target (the smallest square whose measured interpolation error times the
+// difference's gain 2G − 1 is within it) and the default airlight_F table, generated on the
+// OpenCL device as `scatterlut generate` does, f32.
+scatterlut::Table rational_table(scatterlut::Device &device, double radiance_target);
+scatterlut::Table airlight_F_table(scatterlut::Device &device);
+
+// The scenes (bench_gpu_airlight.cpp, bench_gpu_spot.cpp, bench_gpu_nearlight.cpp): 0, or 1 after
+// printing why not.
 int run_airlight_scene(const gpu_harness::Gl &gl, const Options &opt);
+int run_spot_scene(const gpu_harness::Gl &gl, const Options &opt);
 int run_nearlight_scene(const gpu_harness::Gl &gl, const Options &opt);
 
 } // namespace gpu_bench
