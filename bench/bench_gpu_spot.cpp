@@ -176,7 +176,7 @@ int run_spot_scene(const gpu_harness::Gl &gl, const Options &opt) {
         std::fprintf(stderr, "scatterlut_gpu_bench: %s\n", error.c_str());
         return 1;
     }
-    const std::vector<std::vector<double>> round_ms = passes.time_rounds(methods, opt);
+    const std::vector<std::vector<double>> round_ms = passes.time_rounds(methods, opt.rounds, opt.frames);
     if (gl.glGetError() != GL_NO_ERROR) {
         std::fprintf(stderr, "scatterlut_gpu_bench: OpenGL error during the timed frames\n");
         return 1;
