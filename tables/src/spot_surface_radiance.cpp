@@ -101,15 +101,10 @@ double spot_falloff_at_point(const SpotLight &light, const double point_m[3]) {
     check_spot_light(light);
     require(std::isfinite(point_m[0]) && std::isfinite(point_m[1]) && std::isfinite(point_m[2]),
             "spot falloff: the point must hold finite coordinates (m)");
-    const slut_vec3 w = slut_vec3_make(point_m[0] - light.position_m[0], point_m[1] - light.position_m[1],
-                                       point_m[2] - light.position_m[2]);
-    const slut_vec3 n = slut_vec3_make(light.direction[0], light.direction[1], light.direction[2]);
-    const double lw = slut_vec3_length(w), ln = slut_vec3_length(n);
-    require(lw > 0.0 && std::isfinite(lw), "spot falloff: the point must not sit on the light (distance 0)");
-    const double vers = slut_spot_versine_of(slut_vec3_make(w.x / lw, w.y / lw, w.z / lw),
-                                             slut_vec3_make(n.x / ln, n.y / ln, n.z / ln));
-    return slut_spot_falloff(vers, slut_spot_versine(std::fmin(light.outer_angle_rad, kPi)),
-                             slut_spot_versine(std::fmin(light.inner_angle_rad, kPi)));
+    require(point_m[0] != light.position_m[0] || point_m[1] != light.position_m[1] ||
+                point_m[2] != light.position_m[2],
+            "spot falloff: the point must not sit on the light (distance 0)");
+    return spot_falloff(light, {point_m[0], point_m[1], point_m[2]}); // scatterlut/spot.hpp
 }
 
 SurfaceRadiance spot_surface_radiance(const SurfaceTables &tables, const SpotSurfaceLighting &s, double sigma_s_per_m,

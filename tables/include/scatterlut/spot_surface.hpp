@@ -98,8 +98,9 @@ struct SpotSurfaceLighting {
     SpotLight light;                // position (≠ P), axis, θ_o ≥ θ_i, I0 on the axis
 };
 
-// f(θ_P) ∈ [0, 1]: glTF's falloff of the direction from the light to `point_m` (≠ the light's
-// position; std::invalid_argument for a bad light or point).
+// f(θ_P) ∈ [0, 1]: glTF's falloff of the direction from the light to `point_m`: spot_falloff
+// (scatterlut/spot.hpp) for a surface point, which must not sit on the light
+// (std::invalid_argument for a bad light or point).
 double spot_falloff_at_point(const SpotLight &light, const double point_m[3]);
 
 // The terms as above, W/(m²·sr), G from the tables (SurfaceTables of surface_radiance.hpp; T
