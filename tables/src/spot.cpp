@@ -4,6 +4,7 @@
 #include "scatterlut/spot.hpp"
 
 #include "require.hpp"
+#include "gauss_kronrod15.hpp"
 #include "spot_band.hpp"
 
 #include <algorithm>
@@ -25,16 +26,10 @@ constexpr double kAngleMax = kPi + 1e-15; // the double nearest π and rounding 
 // G7–K15 (QUADPACK's qk15 nodes), global adaptive: the panel with the largest |K15 − G7| is
 // halved until the sum of those differences is below 1e-13 of the integral (|K15 − G7|
 // bounds the 7-point rule's error; K15's own is far smaller on smooth integrands).
-constexpr double kXgk[8] = {0.991455371120812639206854697526329, 0.949107912342758524526189684047851,
-                            0.864864423359769072789712788640926, 0.741531185599394439863864773280788,
-                            0.586087235467691130294144845693013, 0.405845151377397166906606412076961,
-                            0.207784955007898467600689403773245, 0.0};
-constexpr double kWgk[8] = {0.022935322010529224963732008058970, 0.063092092629978553290700663189204,
-                            0.104790010322250183839876322541518, 0.140653259715525918745189590510238,
-                            0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
-                            0.204432940075298892414161999234649, 0.209482141084727828012999174891714};
-constexpr double kWg[4] = {0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
-                           0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
+// The qk15 nodes and weights, once for the library (gauss_kronrod15.hpp).
+using gk15::kWg;
+using gk15::kWgk;
+using gk15::kXgk;
 
 struct Panel {
     double a, b, value, error;
