@@ -24,6 +24,23 @@ using scatterlut::Vec3;
 
 constexpr double kPi = 3.14159265358979323846;
 
+// One fixed soft-cone geometry the tests vary a field of at a time: the ray along +x from the
+// origin, 20 m, passing under a spot 4 m above it whose beam points down (θ_o 0.6, θ_i 0.3).
+inline SpotQuery base_query() {
+    SpotQuery q;
+    q.sigma_s_per_m = 0.1;
+    q.sigma_a_per_m = 0.05;
+    q.viewer_m = {0, 0, 0};
+    q.view_dir = {1, 0, 0};
+    q.length_m = 20;
+    q.light.position_m = {5, 0, 4};
+    q.light.direction = {0, 0, -1};
+    q.light.outer_angle_rad = 0.6;
+    q.light.inner_angle_rad = 0.3;
+    q.light.intensity_W_per_sr = 3;
+    return q;
+}
+
 inline double dot(const Vec3 &a, const Vec3 &b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 inline Vec3 add(const Vec3 &a, double k, const Vec3 &b) { return {a[0] + k * b[0], a[1] + k * b[1], a[2] + k * b[2]}; }
 inline Vec3 cross(const Vec3 &a, const Vec3 &b) {

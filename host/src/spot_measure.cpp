@@ -19,34 +19,14 @@ double relative(double value, double exact) {
 // f at the point of [0, s] closest to the light (the view ray's closest approach, clamped to
 // the ray): what an engine multiplies an unclipped point light's airlight by.
 double falloff_at_closest_approach(const SpotQuery &q) {
-    const Vec3 &o = q.viewer_m, &L = q.light.position_m;
     const double dn = std::sqrt(q.view_dir[0] * q.view_dir[0] + q.view_dir[1] * q.view_dir[1] +
                                 q.view_dir[2] * q.view_dir[2]);
     double t = 0;
-    for (int i = 0; i < 3; ++i) t += (L[i] - o[i]) * q.view_dir[i] / dn;
+    for (int i = 0; i < 3; ++i) t += (q.light.position_m[i] - q.viewer_m[i]) * q.view_dir[i] / dn;
     t = std::clamp(t, 0.0, q.length_m);
-    const double an = std::sqrt(q.light.direction[0] * q.light.direction[0] +
-                                q.light.direction[1] * q.light.direction[1] +
-                                q.light.direction[2] * q.light.direction[2]);
-    Vec3 w{};
-    double wn = 0;
-    for (int i = 0; i < 3; ++i) {
-        w[i] = o[i] + t * q.view_dir[i] / dn - L[i];
-        wn += w[i] * w[i];
-    }
-    wn = std::sqrt(wn);
-    if (!(wn > 0)) return 1.0;
-    double vers = 0; // |ŵ − n|²/2
-    for (int i = 0; i < 3; ++i) {
-        const double d = w[i] / wn - q.light.direction[i] / an;
-        vers += 0.5 * d * d;
-    }
-    const double vers_outer = 1.0 - std::cos(q.light.outer_angle_rad);
-    const double vers_inner = 1.0 - std::cos(q.light.inner_angle_rad);
-    if (!(vers_outer > 0) || vers > vers_outer) return 0.0;
-    if (vers <= vers_inner) return 1.0;
-    const double x = (vers_outer - vers) / (vers_outer - vers_inner);
-    return x * x;
+    Vec3 point{};
+    for (int i = 0; i < 3; ++i) point[i] = q.viewer_m[i] + t * q.view_dir[i] / dn;
+    return spot_falloff(q.light, point); // scatterlut/spot.hpp (0 at the apex of a cone)
 }
 
 } // namespace

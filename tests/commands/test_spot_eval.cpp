@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_runner.hpp"
+#include "airlight_quadrature_table.hpp"
 #include "generate_airlight.hpp"
 #include "reference_data.hpp"
 #include "scatterlut/io.hpp"
@@ -54,19 +55,7 @@ scatterlut::SpotQuery query_of(const nlohmann::json &j) {
 }
 
 std::string save_table(double phase_g) {
-    scatterlut::AirlightPlan plan;
-    plan.phase_g = phase_g;
-    plan.n_u = 128;
-    plan.n_w = 64;
-    scatterlut::Table t = scatterlut::make_airlight_table_layout(plan);
-    const slut_axis &au = t.axes[0].map, &aw = t.axes[1].map;
-    t.values.resize(static_cast<size_t>(au.count) * aw.count);
-    for (int j = 0; j < aw.count; ++j)
-        for (int i = 0; i < au.count; ++i) {
-            const double u = slut_axis_node(&au, i), w = slut_axis_node(&aw, j);
-            const double gs = phase_g == 0.0 ? slut_gs_quadrature(u, w, 1.0) : slut_hg_gs_quadrature(u, w, phase_g, 1.0);
-            t.values[static_cast<size_t>(j) * au.count + i] = static_cast<float>(std::log(gs));
-        }
+    const scatterlut::Table t = slut_test::airlight_quadrature_table(phase_g, 128, 64);
     const std::string path = slut_test::temp_stem(phase_g == 0.0 ? "airlight_F" : "airlight_Fg") + ".slut";
     scatterlut::save_binary(t, path);
     return path;

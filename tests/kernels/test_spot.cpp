@@ -38,6 +38,7 @@ double rel(double a, double b) {
 using spot_geometry::dot;
 using spot_geometry::add;
 using spot_geometry::cross;
+using spot_geometry::base_query;
 using spot_geometry::norm;
 using spot_geometry::unit;
 
@@ -147,21 +148,6 @@ TEST(SpotAirlight, ExactMatchesBoostQuadratureOnRandomGeometries) {
     std::printf("spot exact vs Boost: %d geometries (%d unlit), worst: inside %.2e, beside %.2e, along %.2e, "
                 "apex behind %.2e\n",
                 checked, zero, worst[0], worst[1], worst[2], worst[3]);
-}
-
-SpotQuery base_query() {
-    SpotQuery q;
-    q.sigma_s_per_m = 0.1;
-    q.sigma_a_per_m = 0.05;
-    q.viewer_m = {0, 0, 0};
-    q.view_dir = {1, 0, 0};
-    q.length_m = 20;
-    q.light.position_m = {5, 0, 4};
-    q.light.direction = {0, 0, -1};
-    q.light.outer_angle_rad = 0.6;
-    q.light.inner_angle_rad = 0.3;
-    q.light.intensity_W_per_sr = 3;
-    return q;
 }
 
 TEST(SpotAirlight, FullConeIsThePointLight) {

@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include "airlight_quadrature_table.hpp"
 #include "generate_airlight.hpp"
 #include "scatterlut/spot.hpp"
 #include "spot_geometry.hpp"
@@ -31,6 +32,7 @@ namespace {
 
 using scatterlut::SpotQuery;
 using scatterlut::Vec3;
+using spot_geometry::base_query;
 using spot_geometry::kPi;
 
 double rel(double a, double b) {
@@ -168,21 +170,6 @@ TEST(SpotRule, HardConesAreThePointLightOnTheirInterval) {
     EXPECT_LE(worst, 1e-11);
 }
 
-SpotQuery base_query() {
-    SpotQuery q;
-    q.sigma_s_per_m = 0.1;
-    q.sigma_a_per_m = 0.05;
-    q.viewer_m = {0, 0, 0};
-    q.view_dir = {1, 0, 0};
-    q.length_m = 20;
-    q.light.position_m = {5, 0, 4};
-    q.light.direction = {0, 0, -1};
-    q.light.outer_angle_rad = 0.6;
-    q.light.inner_angle_rad = 0.3;
-    q.light.intensity_W_per_sr = 3;
-    return q;
-}
-
 TEST(SpotRule, Limits) {
     // θ_o = θ_i = π: the point light (the one interval is the whole ray).
     std::mt19937_64 rng(9);
@@ -246,26 +233,9 @@ TEST(SpotRule, Limits) {
 
 // ---------------------------------------------------------------- the runtime's calls
 
-scatterlut::Table quadrature_table(double phase_g) {
-    scatterlut::AirlightPlan plan;
-    plan.phase_g = phase_g;
-    plan.n_u = 96;
-    plan.n_w = 48;
-    scatterlut::Table t = scatterlut::make_airlight_table_layout(plan);
-    const slut_axis &au = t.axes[0].map, &aw = t.axes[1].map;
-    t.values.resize(static_cast<size_t>(au.count) * aw.count);
-    for (int j = 0; j < aw.count; ++j)
-        for (int i = 0; i < au.count; ++i) {
-            const double u = slut_axis_node(&au, i), w = slut_axis_node(&aw, j);
-            const double gs = phase_g == 0.0 ? slut_gs_quadrature(u, w, 1.0) : slut_hg_gs_quadrature(u, w, phase_g, 1.0);
-            t.values[static_cast<size_t>(j) * au.count + i] = static_cast<float>(std::log(gs));
-        }
-    return t;
-}
-
 TEST(SpotBatch, EqualsTheScalarCallBitForBit) {
-    const scatterlut::AirlightTable iso(quadrature_table(0.0));
-    const scatterlut::AirlightHgTable hg(quadrature_table(0.6));
+    const scatterlut::AirlightTable iso(slut_test::airlight_quadrature_table(0.0, 96, 48));
+    const scatterlut::AirlightHgTable hg(slut_test::airlight_quadrature_table(0.6, 96, 48));
     std::mt19937_64 rng(11);
     std::vector<SpotQuery> qs;
     for (int k = 0; k < 120; ++k) qs.push_back(spot_geometry::random_geometry(rng, k).q);

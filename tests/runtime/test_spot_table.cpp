@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "airlight_quadrature_table.hpp"
 #include "generate_airlight.hpp"
 #include "scatterlut/spot.hpp"
 
@@ -30,30 +31,12 @@ double rel(double a, double b) {
     return std::fabs(a - b) / std::fabs(b);
 }
 
-// An airlight table of asymmetry g filled by the shared quadrature (as tests/runtime/test_airlight_table.cpp).
-scatterlut::Table quadrature_table(double phase_g, int n_u, int n_w) {
-    scatterlut::AirlightPlan plan;
-    plan.phase_g = phase_g;
-    plan.n_u = n_u;
-    plan.n_w = n_w;
-    scatterlut::Table t = scatterlut::make_airlight_table_layout(plan);
-    const slut_axis &au = t.axes[0].map, &aw = t.axes[1].map;
-    t.values.resize(static_cast<size_t>(au.count) * aw.count);
-    for (int j = 0; j < aw.count; ++j)
-        for (int i = 0; i < au.count; ++i) {
-            const double u = slut_axis_node(&au, i), w = slut_axis_node(&aw, j);
-            const double gs = phase_g == 0.0 ? slut_gs_quadrature(u, w, 1.0) : slut_hg_gs_quadrature(u, w, phase_g, 1.0);
-            t.values[static_cast<size_t>(j) * au.count + i] = static_cast<float>(std::log(gs));
-        }
-    return t;
-}
-
 const scatterlut::AirlightTable &iso_table() {
-    static const scatterlut::AirlightTable table(quadrature_table(0.0, 256, 128));
+    static const scatterlut::AirlightTable table(slut_test::airlight_quadrature_table(0.0, 256, 128));
     return table;
 }
 const scatterlut::AirlightHgTable &hg_table() {
-    static const scatterlut::AirlightHgTable table(quadrature_table(0.6, 256, 128));
+    static const scatterlut::AirlightHgTable table(slut_test::airlight_quadrature_table(0.6, 256, 128));
     return table;
 }
 
