@@ -36,6 +36,13 @@
  *   - math only from the functions the SLUT_SHADER branch maps, each explicitly (to a float
  *     version that keeps relative precision, or to the GPU built-in where that is enough:
  *     common.slsl says which and why); a call to anything else fails the snippet build.
+ *   - a conditional value whose operands compute something is SLUT_SELECT(c, a, b) (c ? a : b,
+ *     both operands evaluated in the shaders: a select). ANGLE, WebGL's GLSL ES compiler on
+ *     Vulkan, lowers `c ? a : b` with computed operands to a branch; SwiftShader (Chromium's
+ *     WebGL2 without a GPU) compiles a chain of such branches in time that grows exponentially:
+ *     one spot light (kernels/slut_spot_rule.h) took 148 s with `?:` and 0.2 s with
+ *     SLUT_SELECT (bench/README.md, "Compile cost on SwiftShader"). Operands must be side-effect
+ *     free and defined for every input (both are computed on the GPU).
  * Code outside that subset (the generator's quadratures, the runtime's fast paths) sits in
  * `#ifndef SLUT_SHADER` blocks.
  */
@@ -96,6 +103,11 @@
 /* (1 + cos x)/sin x for x in (0, π/2] from one polynomial sin/cos pair (common.slsl): the
    values of slut_cos and slut_sin, half their work (slut_warp_forward). */
 #  define SLUT_ONE_PLUS_COS_OVER_SIN(x) slut_one_plus_cos_over_sin(x)
+/* c ? a : b as a select (the prelude's slut_select overloads for float, int and bool; WGSL's
+   prelude defines it as the ternary, which tables/shaders/wgsl/slut_wgsl.py writes as select()). */
+#  ifndef SLUT_SELECT
+#    define SLUT_SELECT(c, a, b) slut_select((c), (a), (b))
+#  endif
 /* SLUT_PIO2_HI and SLUT_PIO2_LO, π/2 split for float, come from common.slsl (its float
  * math needs them before this header). */
 #endif
@@ -165,6 +177,7 @@ SLUT_FN void slut_check_failed(const char *file, int line, const char *condition
 #define SLUT_DCHECK_GE(a, b) SLUT_DCHECK_OP(a, >=, b)
 
 #ifndef SLUT_SHADER
+#define SLUT_SELECT(c, a, b) ((c) ? (a) : (b))
 #define SLUT_STRUCT_BEGIN(name) typedef struct name {
 #define SLUT_STRUCT_END(name) } name
 #define SLUT_OUT_ARRAY(type, name, size) type *name

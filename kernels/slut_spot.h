@@ -92,13 +92,13 @@ SLUT_FN int slut_spot_cone_roots(double nu, double nu_d, double nu_e, double mis
     double disc = B * B - A * C;
     int real = (disc >= -SLUT_SPOT_TANGENT_SLACK * (B * B + fabs(A * C))) ? 1 : 0;
     double root = sqrt(fmax(disc, 0.0));
-    double q = -(B + ((B >= 0.0) ? root : -root));
-    double r0 = (fabs(q) < SLUT_INFINITE_ABOVE * fabs(A)) ? q / A : (((q > 0.0) == (A > 0.0)) ? SLUT_INFINITE_ABOVE : -SLUT_INFINITE_ABOVE);
-    double r1 = (q != 0.0) ? slut_clamp(C / q, -SLUT_INFINITE_ABOVE, SLUT_INFINITE_ABOVE) : 0.0;
+    double q = -(B + SLUT_SELECT(B >= 0.0, root, -root));
+    double r0 = SLUT_SELECT(fabs(q) < SLUT_INFINITE_ABOVE * fabs(A), q / A, SLUT_SELECT((q > 0.0) == (A > 0.0), SLUT_INFINITE_ABOVE, -SLUT_INFINITE_ABOVE));
+    double r1 = SLUT_SELECT(q != 0.0, slut_clamp(C / q, -SLUT_INFINITE_ABOVE, SLUT_INFINITE_ABOVE), 0.0);
     /* A = 0 && B = 0: the ray lies on the cone or never meets it; q = 0 (B = 0, C = 0): τ = 0 */
     int n = (real == 0) ? 0 : ((A == 0.0) ? ((B == 0.0) ? 0 : 1) : ((q == 0.0) ? 1 : 2));
-    tau[0] = (n == 2) ? fmin(r0, r1) : ((n == 1) ? r1 : 0.0);
-    tau[1] = (n == 2) ? fmax(r0, r1) : tau[0];
+    tau[0] = SLUT_SELECT(n == 2, fmin(r0, r1), SLUT_SELECT(n == 1, r1, 0.0));
+    tau[1] = SLUT_SELECT(n == 2, fmax(r0, r1), tau[0]);
     return n;
 }
 
@@ -116,8 +116,8 @@ SLUT_FN slut_spot_cone slut_spot_cone_of(double angle_rad) {
     slut_spot_cone c;
     double s = sin(0.5 * angle_rad), co = cos(0.5 * angle_rad);
     int lit = (angle_rad > 0.5 * SLUT_PI) ? 0 : 1;
-    c.axis_sign = (lit != 0) ? 1.0 : -1.0;
-    c.nu = (angle_rad >= SLUT_PI) ? 0.0 : ((lit != 0) ? 2.0 * s * s : 2.0 * co * co);
+    c.axis_sign = SLUT_SELECT(lit != 0, 1.0, -1.0);
+    c.nu = SLUT_SELECT(angle_rad >= SLUT_PI, 0.0, SLUT_SELECT(lit != 0, 2.0 * s * s, 2.0 * co * co));
     return c;
 }
 
@@ -142,19 +142,19 @@ SLUT_FN slut_spot_span slut_spot_convex_span(double nu, double nu_d, double nu_e
     double A = (nu - nu_d) * (2.0 - nu - nu_d);
     double B = mu_e * mu_d;
     /* no real root with A > 0 is rounding near the apex: the vertex −B/A stands for both */
-    double vertex = (fabs(B) < SLUT_INFINITE_ABOVE * fabs(A)) ? -B / A : 0.0;
-    double near_root = (n == 0) ? vertex : tau[0];
-    double far_root = (n == 2) ? tau[1] : near_root;
+    double vertex = SLUT_SELECT(fabs(B) < SLUT_INFINITE_ABOVE * fabs(A), -B / A, 0.0);
+    double near_root = SLUT_SELECT(n == 0, vertex, tau[0]);
+    double far_root = SLUT_SELECT(n == 2, tau[1], near_root);
     int between = (A < 0.0 && n == 2 && mu_e > 0.0) ? 1 : 0; /* the part between the roots */
     int in_plane = (A == 0.0 && mu_d == 0.0) ? 1 : 0;         /* α = π/2, d in the plane: all or nothing */
     int one_ray = (A > 0.0 || (A == 0.0 && mu_d != 0.0 && mu_e > 0.0)) ? 1 : 0; /* A = 0: a generator's direction */
-    double lo = (one_ray != 0) ? ((mu_d > 0.0) ? far_root : -SLUT_INFINITE_ABOVE) : SLUT_INFINITE_ABOVE;
-    double hi = (one_ray != 0) ? ((mu_d > 0.0) ? SLUT_INFINITE_ABOVE : near_root) : SLUT_INFINITE_ABOVE;
-    lo = (in_plane != 0) ? ((mu_e > 0.0) ? -SLUT_INFINITE_ABOVE : SLUT_INFINITE_ABOVE) : lo;
-    lo = (between != 0) ? tau[0] : lo;
-    hi = (between != 0) ? tau[1] : hi;
-    j.lo = (nu > 0.0) ? lo : SLUT_INFINITE_ABOVE;
-    j.hi = (nu > 0.0) ? hi : SLUT_INFINITE_ABOVE;
+    double lo = SLUT_SELECT(one_ray != 0, SLUT_SELECT(mu_d > 0.0, far_root, -SLUT_INFINITE_ABOVE), SLUT_INFINITE_ABOVE);
+    double hi = SLUT_SELECT(one_ray != 0, SLUT_SELECT(mu_d > 0.0, SLUT_INFINITE_ABOVE, near_root), SLUT_INFINITE_ABOVE);
+    lo = SLUT_SELECT(in_plane != 0, SLUT_SELECT(mu_e > 0.0, -SLUT_INFINITE_ABOVE, SLUT_INFINITE_ABOVE), lo);
+    lo = SLUT_SELECT(between != 0, tau[0], lo);
+    hi = SLUT_SELECT(between != 0, tau[1], hi);
+    j.lo = SLUT_SELECT(nu > 0.0, lo, SLUT_INFINITE_ABOVE);
+    j.hi = SLUT_SELECT(nu > 0.0, hi, SLUT_INFINITE_ABOVE);
     return j;
 }
 

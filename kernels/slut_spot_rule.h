@@ -89,8 +89,8 @@ SLUT_FN slut_spot_span slut_spot_span_along(slut_spot_cone c, slut_vec3 n, slut_
                                             double miss, double closest) {
     slut_vec3 m = slut_vec3_make(c.axis_sign * n.x, c.axis_sign * n.y, c.axis_sign * n.z);
     slut_spot_span j = slut_spot_convex_span(c.nu, slut_spot_versine_of(d, m), slut_spot_versine_of(foot, m), miss);
-    j.lo = (j.lo >= SLUT_INFINITE_ABOVE) ? SLUT_INFINITE_ABOVE : closest + j.lo;
-    j.hi = (j.hi >= SLUT_INFINITE_ABOVE) ? SLUT_INFINITE_ABOVE : closest + j.hi;
+    j.lo = SLUT_SELECT(j.lo >= SLUT_INFINITE_ABOVE, SLUT_INFINITE_ABOVE, closest + j.lo);
+    j.hi = SLUT_SELECT(j.hi >= SLUT_INFINITE_ABOVE, SLUT_INFINITE_ABOVE, closest + j.hi);
     return j;
 }
 
@@ -108,13 +108,13 @@ SLUT_FN slut_spot_ray slut_spot_ray_of(slut_vec3 viewer, slut_vec3 view_dir, slu
     r.closest = -slut_vec3_dot(r.dir, w0);
     slut_vec3 e = slut_vec3_make(w0.x + r.closest * r.dir.x, w0.y + r.closest * r.dir.y, w0.z + r.closest * r.dir.z);
     r.miss = sqrt(slut_vec3_dot(e, e));
-    double inv_miss = (r.miss > 0.0) ? 1.0 / r.miss : 0.0;
+    double inv_miss = SLUT_SELECT(r.miss > 0.0, 1.0 / r.miss, 0.0);
     r.foot = slut_vec3_make(e.x * inv_miss, e.y * inv_miss, e.z * inv_miss);
     r.axis = slut_vec3_make(co.axis_sign * n.x, co.axis_sign * n.y, co.axis_sign * n.z);
     r.ray_length = fmin(ray_length, SLUT_INFINITE_ABOVE);
     r.nu_outer = co.nu;
-    r.nu_inner = (co.axis_sign == ci.axis_sign) ? ci.nu : 2.0 - ci.nu; /* θ_i ≤ π/2 < θ_o: 2 cos²(θ_i/2) ≥ 1 */
-    r.inv_band = (r.nu_outer != r.nu_inner) ? 1.0 / (r.nu_outer - r.nu_inner) : 0.0;
+    r.nu_inner = SLUT_SELECT(co.axis_sign == ci.axis_sign, ci.nu, 2.0 - ci.nu); /* θ_i ≤ π/2 < θ_o: 2 cos²(θ_i/2) ≥ 1 */
+    r.inv_band = SLUT_SELECT(r.nu_outer != r.nu_inner, 1.0 / (r.nu_outer - r.nu_inner), 0.0);
     slut_spot_span jo = slut_spot_span_along(co, n, r.dir, r.foot, r.miss, r.closest);
     slut_spot_span ji = slut_spot_span_along(ci, n, r.dir, r.foot, r.miss, r.closest);
     r.outer_lo = jo.lo;
@@ -145,53 +145,53 @@ SLUT_STRUCT_END(slut_spot_interval);
  * (f = 1 on the inner cone's span for θ_i ≤ π/2, off it for θ_i > π/2), and x(lo) as a viewer. */
 SLUT_FN slut_spot_interval slut_spot_interval_of(slut_spot_ray r) {
     slut_spot_interval iv;
-    double lo = (r.outer_lit != 0) ? fmax(0.0, r.outer_lo) : 0.0;
-    double hi = (r.outer_lit != 0) ? fmin(r.ray_length, r.outer_hi) : r.ray_length;
+    double lo = SLUT_SELECT(r.outer_lit != 0, fmax(0.0, r.outer_lo), 0.0);
+    double hi = SLUT_SELECT(r.outer_lit != 0, fmin(r.ray_length, r.outer_hi), r.ray_length);
     int empty = (hi > lo) ? 0 : 1;
-    lo = (empty != 0) ? 0.0 : lo;
-    hi = (empty != 0) ? 0.0 : hi;
+    lo = SLUT_SELECT(empty != 0, 0.0, lo);
+    hi = SLUT_SELECT(empty != 0, 0.0, hi);
     iv.lo = lo;
     iv.hi = hi;
     /* θ_i ≤ π/2: D = I minus the inner span (before and after it). θ_i > π/2: D = I on the inner
      * (dark) span, cut where the ray leaves the outer (dark) cone's middle. */
     double ilo = fmin(hi, fmax(lo, r.inner_lo)), ihi = fmax(ilo, fmin(hi, r.inner_hi));
     double dark_mid = slut_clamp(0.5 * (fmax(r.outer_lo, -SLUT_SQUARABLE_MAX) + fmin(r.outer_hi, SLUT_SQUARABLE_MAX)), ilo, ihi);
-    iv.band0_lo = (r.inner_lit != 0) ? lo : ilo;
-    iv.band0_hi = (r.inner_lit != 0) ? ilo : dark_mid;
-    iv.band1_lo = (r.inner_lit != 0) ? ihi : dark_mid;
-    iv.band1_hi = (r.inner_lit != 0) ? hi : ihi;
-    iv.has_core = ((r.inner_lit != 0) ? (ihi > ilo) : (ilo > lo || hi > ihi)) ? 1 : 0;
+    iv.band0_lo = SLUT_SELECT(r.inner_lit != 0, lo, ilo);
+    iv.band0_hi = SLUT_SELECT(r.inner_lit != 0, ilo, dark_mid);
+    iv.band1_lo = SLUT_SELECT(r.inner_lit != 0, ihi, dark_mid);
+    iv.band1_hi = SLUT_SELECT(r.inner_lit != 0, hi, ihi);
+    iv.has_core = SLUT_SELECT(r.inner_lit != 0, ihi > ilo, ilo > lo || hi > ihi) ? 1 : 0;
     /* A ray that misses the inner cone has all of I in D, where f rises and falls again: cut it
      * where f peaks, so that both pieces are monotone. Along the line m_o·ŵ = (m_o·d) sin φ +
      * (m_o·ê) cos φ (t = t* + h tan φ) is extreme at tan φ = a'/b' (a' = ±m_o·d, b' = ±m_o·ê, the
      * sign of inv_band: f grows as m_o·ŵ does for a lit outer cone, falls for a dark one); b' ≤ 0
      * leaves f monotone on the line. */
-    double growth = (r.inv_band >= 0.0) ? 1.0 : -1.0;
+    double growth = SLUT_SELECT(r.inv_band >= 0.0, 1.0, -1.0);
     double a1 = growth * slut_vec3_dot(r.axis, r.dir), b1 = growth * slut_vec3_dot(r.axis, r.foot);
-    double peak = (b1 > 0.0 && fabs(a1) * r.miss < SLUT_INFINITE_ABOVE * b1) ? r.closest + r.miss * (a1 / b1)
-                                                                               : ((a1 > 0.0) ? SLUT_INFINITE_ABOVE : -SLUT_INFINITE_ABOVE);
+    double peak = SLUT_SELECT(b1 > 0.0 && fabs(a1) * r.miss < SLUT_INFINITE_ABOVE * b1, r.closest + r.miss * (a1 / b1),
+                              SLUT_SELECT(a1 > 0.0, SLUT_INFINITE_ABOVE, -SLUT_INFINITE_ABOVE));
     double cut = slut_clamp(peak, lo, hi);
-    iv.band0_lo = (iv.has_core != 0) ? iv.band0_lo : lo;
-    iv.band0_hi = (iv.has_core != 0) ? iv.band0_hi : cut;
-    iv.band1_lo = (iv.has_core != 0) ? iv.band1_lo : cut;
-    iv.band1_hi = (iv.has_core != 0) ? iv.band1_hi : hi;
+    iv.band0_lo = SLUT_SELECT(iv.has_core != 0, iv.band0_lo, lo);
+    iv.band0_hi = SLUT_SELECT(iv.has_core != 0, iv.band0_hi, cut);
+    iv.band1_lo = SLUT_SELECT(iv.has_core != 0, iv.band1_lo, cut);
+    iv.band1_hi = SLUT_SELECT(iv.has_core != 0, iv.band1_hi, hi);
     /* x(lo) − L = e + τ d as the sub-segment's viewer; at the light (the ray leaves the apex lit)
      * γ' = 0 at a distance the point light's radiance takes (its +∞ through the light, 0 for an
      * empty interval). */
     double tau = lo - r.closest;
     double dist = sqrt(tau * tau + r.miss * r.miss);
-    double inv_dist = (dist > 0.0) ? 1.0 / dist : 0.0;
+    double inv_dist = SLUT_SELECT(dist > 0.0, 1.0 / dist, 0.0);
     iv.distance = fmax(dist, SLUT_SQUARABLE_MIN);
     iv.sin_gamma = r.miss * inv_dist;
-    iv.cos_gamma = (dist > 0.0) ? -tau * inv_dist : 1.0;
-    iv.sub_length = (hi >= SLUT_INFINITE_ABOVE) ? SLUT_INFINITE_ABOVE : hi - lo;
+    iv.cos_gamma = SLUT_SELECT(dist > 0.0, -tau * inv_dist, 1.0);
+    iv.sub_length = SLUT_SELECT(hi >= SLUT_INFINITE_ABOVE, SLUT_INFINITE_ABOVE, hi - lo);
     return iv;
 }
 
 /* The light path less t*, y = t + d − t* = τ + √(τ² + h²) (h²/(d − τ) for τ < 0: no cancellation). */
 SLUT_FN double slut_spot_path_at(double tau, double miss) {
     double d = sqrt(tau * tau + miss * miss);
-    return (tau >= 0.0) ? tau + d : ((d - tau > 0.0) ? miss * (miss / (d - tau)) : 0.0);
+    return SLUT_SELECT(tau >= 0.0, tau + d, SLUT_SELECT(d - tau > 0.0, miss * (miss / (d - tau)), 0.0));
 }
 
 /* ρ = tan(η/2) at the point τ = t − t* of the ray, η the angle there between the ray and the
@@ -199,7 +199,7 @@ SLUT_FN double slut_spot_path_at(double tau, double miss) {
  * t*, h/ρ after it). */
 SLUT_FN double slut_spot_rho(double tau, double miss) {
     double d = sqrt(tau * tau + miss * miss);
-    return (d > 0.0) ? miss / (d + fabs(tau)) : 1.0;
+    return SLUT_SELECT(d > 0.0, miss / (d + fabs(tau)), 1.0);
 }
 
 /* The spot's airlight on the interval, W/(m²·sr), from `point_radiance`, the point light's
@@ -221,31 +221,31 @@ SLUT_FN double slut_spot_interval_radiance(slut_spot_ray r, slut_spot_interval i
      * by SLUT_SPOT_SPLIT_OPTICAL/σ_t past its start (or at half its optical length, if that is
      * less), so that the near part, which carries most of the light, has its own rule. */
     int lone = (iv.band1_hi > iv.band1_lo) ? 0 : ((iv.band0_hi > iv.band0_lo) ? 1 : 0);
-    double only_lo = (lone != 0) ? iv.band0_lo : 0.0, only_hi = (lone != 0) ? iv.band0_hi : 0.0;
+    double only_lo = SLUT_SELECT(lone != 0, iv.band0_lo, 0.0), only_hi = SLUT_SELECT(lone != 0, iv.band0_hi, 0.0);
     double ya = slut_spot_path_at(only_lo - r.closest, h), yb = slut_spot_path_at(only_hi - r.closest, h);
     double grow = fmin(SLUT_SPOT_SPLIT_OPTICAL, 0.5 * sigma_t * fmin(yb - ya, SLUT_INFINITE_ABOVE));
-    double ym = (sigma_t > 0.0) ? ya + grow / sigma_t : 0.5 * (ya + fmin(yb, SLUT_SQUARABLE_MAX));
+    double ym = SLUT_SELECT(sigma_t > 0.0, ya + grow / sigma_t, 0.5 * (ya + fmin(yb, SLUT_SQUARABLE_MAX)));
     double split = slut_clamp(r.closest + (ym - h) * (ym + h) / (2.0 * fmax(ym, SLUT_TINY)), only_lo, only_hi);
     for (int piece = 0; piece < 2; ++piece) {
-        double a = ((lone != 0) ? ((piece == 0) ? only_lo : split) : ((piece == 0) ? iv.band0_lo : iv.band1_lo)) - r.closest;
-        double b = ((lone != 0) ? ((piece == 0) ? split : only_hi) : ((piece == 0) ? iv.band0_hi : iv.band1_hi)) - r.closest; /* τ = t − t* */
+        double a = SLUT_SELECT(lone != 0, SLUT_SELECT(piece == 0, only_lo, split), SLUT_SELECT(piece == 0, iv.band0_lo, iv.band1_lo)) - r.closest;
+        double b = SLUT_SELECT(lone != 0, SLUT_SELECT(piece == 0, split, only_hi), SLUT_SELECT(piece == 0, iv.band0_hi, iv.band1_hi)) - r.closest; /* τ = t − t* */
         double rho_a = slut_spot_rho(a, h), rho_b = slut_spot_rho(b, h);
-        double side_a = (a >= 0.0) ? 1.0 : -1.0, side_b = (b >= 0.0) ? 1.0 : -1.0;
+        double side_a = SLUT_SELECT(a >= 0.0, 1.0, -1.0), side_b = SLUT_SELECT(b >= 0.0, 1.0, -1.0);
         double zeta_a = side_a * (1.0 - rho_a) / (1.0 + rho_a), zeta_b = side_b * (1.0 - rho_b) / (1.0 + rho_b);
         int same_side = (side_a == side_b) ? 1 : 0;
-        double half_extent = 0.5 * ((same_side != 0) ? fabs(rho_b - rho_a) : fabs(zeta_b - zeta_a));
+        double half_extent = 0.5 * SLUT_SELECT(same_side != 0, fabs(rho_b - rho_a), fabs(zeta_b - zeta_a));
         for (int j = 0; j < 4; ++j) {
             double u = 0.5 + 0.5 * SLUT_SPOT_NODE(j);
             double zeta = zeta_a + (zeta_b - zeta_a) * u;
             double k = 1.0 / (1.0 + fabs(zeta)); /* across t*: ρ = (1 − |ζ|)/(1 + |ζ|), dη/dζ = 4k²/(1 + ρ²)·… */
-            double rho = (same_side != 0) ? rho_a + (rho_b - rho_a) * u : (1.0 - fabs(zeta)) * k;
-            double side = (same_side != 0) ? side_a : ((zeta >= 0.0) ? 1.0 : -1.0);
+            double rho = SLUT_SELECT(same_side != 0, rho_a + (rho_b - rho_a) * u, (1.0 - fabs(zeta)) * k);
+            double side = SLUT_SELECT(same_side != 0, side_a, SLUT_SELECT(zeta >= 0.0, 1.0, -1.0));
             double rho2 = rho * rho;
             double one = 1.0 / (fmax(rho, SLUT_TINY) * (1.0 + rho2)); /* 1/(ρ (1 + ρ²)): both reciprocals */
             double inv = rho * one;                                    /* 1/(1 + ρ²) */
             /* the path y − t* (hρ before t*, h/ρ after) in the light path's exponent, relative to
              * the sub-segment's start (t + d at lo, which the scale carries) */
-            double y = (side > 0.0) ? h * (1.0 + rho2) * one : h * rho;
+            double y = SLUT_SELECT(side > 0.0, h * (1.0 + rho2) * one, h * rho);
             /* ŵ (light → point), its versine about m_o, f */
             double sn = 2.0 * rho * inv, cs = side * (1.0 - rho) * (1.0 + rho) * inv;
             double wx = cs * r.dir.x + sn * r.foot.x - r.axis.x;
@@ -255,9 +255,9 @@ SLUT_FN double slut_spot_interval_radiance(slut_spot_ray r, slut_spot_interval i
             double f = q * q;
             /* the integrand per unit η, less σ_s/(4π) I0/h, times the node's share (dη = 2 dρ/(1 + ρ²),
              * or 2 dζ/(1 + ζ²) = 4k² dζ/(2(1 + ρ²))·2 across t*) */
-            double psi = (phase_g == 0.0) ? 1.0 : slut_hg_psi_half(phase_g, (side > 0.0) ? inv : rho2 * inv,
-                                                                  (side > 0.0) ? rho2 * inv : inv);
-            double jacobian = (same_side != 0) ? 2.0 * inv : 4.0 * inv * k * k;
+            double psi = SLUT_SELECT(phase_g == 0.0, 1.0,
+                                     slut_hg_psi_half(phase_g, SLUT_SELECT(side > 0.0, inv, rho2 * inv), SLUT_SELECT(side > 0.0, rho2 * inv, inv)));
+            double jacobian = SLUT_SELECT(same_side != 0, 2.0 * inv, 4.0 * inv * k * k);
             double weight = SLUT_SPOT_WEIGHT(j) * half_extent * jacobian * psi *
                             exp(-sigma_t * fmin(r.closest + y, SLUT_INFINITE_ABOVE));
             weight_sum += weight;
@@ -267,12 +267,12 @@ SLUT_FN double slut_spot_interval_radiance(slut_spot_ray r, slut_spot_interval i
     }
     /* the rule's sums in W/(m²·sr): σ_s/(4π) I0/h (the nodes' exponents are the whole light
      * path t + d from the viewer); the table's T is the sub-segment's seen from x(lo) */
-    double attenuation = (iv.lo > 0.0) ? exp(-sigma_t * iv.lo) : 1.0;
+    double attenuation = SLUT_SELECT(iv.lo > 0.0, exp(-sigma_t * iv.lo), 1.0);
     double scale = (sigma_s * SLUT_INV_4PI) * intensity / h;
     double lit = attenuation * point_radiance;
-    double corrected = (iv.has_core != 0) ? lit - scale * deficit_sum
-                                          : ((weight_sum > 0.0 && lit_sum > 0.0) ? lit * (lit_sum / weight_sum) : 0.0);
-    return (lit > 0.0 && corrected > 0.0) ? fmin(corrected, lit) : 0.0;
+    double corrected = SLUT_SELECT(iv.has_core != 0, lit - scale * deficit_sum,
+                                   SLUT_SELECT(weight_sum > 0.0 && lit_sum > 0.0, lit * (lit_sum / weight_sum), 0.0));
+    return SLUT_SELECT(lit > 0.0 && corrected > 0.0, fmin(corrected, lit), 0.0);
 }
 
 #endif /* SLUT_SPOT_RULE_H */

@@ -1,10 +1,12 @@
 // Compile cost of the GLSL ES snippets on Chromium's SwiftShader (WebGL2), A/B:
 //   node examples/web/bench_compile.mjs SNIPPET.essl[+SNIPPET2.essl] [...] [--rounds 1..50]
-//        [--lamps 1..6] [--chromium PATH] [--translated DIR [--no-draw]]
+//        [--lamps 1..6] [--spot] [--tier fast|accurate] [--chromium PATH]
+//        [--translated DIR [--no-draw]]
 // Each argument is one fragment shader: the snippets joined ('+': e.g. the airlight and the
 // near-light snippet, as the web demo loads them) and a main() that calls what they define
 // as fog.mjs does: slut_airlight_radiance_points for each of --lamps lamps if the snippets
-// define it, and slut_near_light_radiance on an E3 table (thick medium, no refraction) for
+// define it (--spot: slut_airlight_spot_radiance_points, each lamp a spot with its own axis
+// and cone; --tier: the snippets' tier define first, docs/SHADERS.md "Tiers"), and slut_near_light_radiance on an E3 table (thick medium, no refraction) for
 // each lamp if they define that. Per shader and round: compile + link (WebGL's
 // compileShader, linkProgram and their status: ANGLE's translation), then the first draw
 // of an 8 x 8 frame and a one-pixel readPixels, where SwiftShader builds the pipeline
@@ -19,10 +21,13 @@ import { existsSync, readFileSync, mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { parseArgs, launchSwiftShader, blankPage, median, gpuProcessCpuSeconds } from './bench_chromium.mjs';
 
-const usage = 'usage: node bench_compile.mjs SNIPPET.essl[+SNIPPET2.essl] [...] [--rounds 1..50] [--lamps 1..6] ' +
-	'[--chromium PATH] [--translated DIR [--no-draw]]';
-const { opt, flag, positional, intOption } = parseArgs(process.argv.slice(2), ['--chromium', '--rounds', '--lamps', '--translated'],
-	['--no-draw'], usage, 'bench_compile');
+const usage = 'usage: node bench_compile.mjs SNIPPET.essl[+SNIPPET2.essl] [...] [--rounds 1..50] [--lamps 1..6] [--spot] ' +
+	'[--tier fast|accurate] [--chromium PATH] [--translated DIR [--no-draw]]';
+const { opt, flag, positional, intOption } = parseArgs(process.argv.slice(2), ['--chromium', '--rounds', '--lamps', '--translated', '--tier'],
+	['--no-draw', '--spot'], usage, 'bench_compile');
+const spot = flag('--spot');
+const tier = opt('--tier');
+if (tier !== undefined && tier !== 'fast' && tier !== 'accurate') { console.error(`bench_compile: --tier ${tier}: expected fast or accurate`); process.exit(2); }
 if (positional.length < 1) { console.error(usage); process.exit(2); }
 const rounds = intOption('--rounds', 3, 1, 50), lamps = intOption('--lamps', 6, 1, 6);
 for (const p of positional.flatMap((a) => a.split('+')))
@@ -32,14 +37,14 @@ for (const p of positional.flatMap((a) => a.split('+')))
 // makes each compile's source and SPIR-V distinct).
 function fragmentShader(arg) {
 	const snippets = arg.split('+').map((p) => readFileSync(p, 'utf8')).join('');
-	const air = /\bslut_airlight_radiance_points\s*\(/.test(snippets);
+	const air = (spot ? /\bslut_airlight_spot_radiance_points\s*\(/ : /\bslut_airlight_radiance_points\s*\(/).test(snippets);
 	const near = /\bslut_near_light_radiance\s*\(/.test(snippets);
 	if (!air && !near) {
-		console.error(`bench_compile: ${arg}: defines neither slut_airlight_radiance_points nor slut_near_light_radiance`);
+		console.error(`bench_compile: ${arg}: defines neither slut_airlight_${spot ? 'spot_' : ''}radiance_points nor slut_near_light_radiance`);
 		process.exit(2);
 	}
 	return { air, near, text: (salt) => `#version 300 es
-${snippets}
+${tier ? `#define SLUT_TIER_${tier.toUpperCase()}\n` : ''}${snippets}
 uniform sampler2D airlight_table;
 uniform sampler3D near_table;
 uniform vec4 air_u, air_w;
@@ -48,14 +53,19 @@ uniform ivec3 near_warps;
 uniform vec3 eye;
 uniform vec2 fog_sigma, slab_sigma;
 uniform vec4 lights[6];
+uniform vec4 light_axes[6];                 // xyz the beam's axis, w unused
+uniform vec2 light_cones[6];                // outer, inner half-angle (rad)
 out vec4 colour;
 void main() {
     vec3 d = normalize(vec3((gl_FragCoord.xy - 4.0) / 8.0, -1.0));
     float s = (9.0 - eye.z) / -d.z, L = 0.0;
-${air ? `    SlutAirlightTable air = slut_airlight_table(air_u.y, air_u.z, int(air_u.w), air_w.x, int(air_w.w));
+${air ? `    SlutAirlightTable air = ${tier ? 'slut_airlight_table(int(air_u.w), int(air_w.w))'
+		: 'slut_airlight_table(air_u.y, air_u.z, int(air_u.w), air_w.x, int(air_w.w))'};
     for (int k = 0; k < ${lamps}; ++k)
-        L += slut_airlight_radiance_points(airlight_table, air, eye, d, lights[k].xyz, s, fog_sigma.x, fog_sigma.y,
-                                           lights[k].w);
+${spot ? `        L += slut_airlight_spot_radiance_points(airlight_table, air, eye, d, lights[k].xyz, light_axes[k].xyz,
+                                                light_cones[k].x, light_cones[k].y, s, fog_sigma.x, fog_sigma.y,
+                                                lights[k].w);` : `        L += slut_airlight_radiance_points(airlight_table, air, eye, d, lights[k].xyz, s, fog_sigma.x, fog_sigma.y,
+                                           lights[k].w);`}
 ` : ''}${near ? `    SlutNearLightTable e3 = slut_near_light_table_e3(
         slut_axis_make(near_T.x, near_T.y, near_T.z, near_warps.x, int(near_T.w)),
         slut_axis_make(near_g.x, near_g.y, near_g.z, near_warps.y, int(near_g.w)),
@@ -133,6 +143,8 @@ function pageDraw() {
 	gl.uniform2f(loc('slab_sigma'), 5.0, 0.2);
 	gl.uniform4fv(loc('lights'), [-3.5, 5, -12, 300, 3.8, 5, -26, 300, -3.8, 5, -45, 300, 3.8, 5, -70, 300,
 		2, 1.2, -8.6, 40, -2, 4, 3, 200]);
+	gl.uniform4fv(loc('light_axes'), [0.35, -1, 0, 0, -0.35, -1, 0, 0, 0.35, -1, 0, 0, -0.35, -1, 0, 0, 0, -1, 0, 0, 0.35, -1, 0, 0]);
+	gl.uniform2fv(loc('light_cones'), [0.96, 0.61, 0.96, 0.61, 0.96, 0.61, 0.96, 0.61, 0.35, 0.21, 0.96, 0.61]);
 	gl.drawArrays(gl.TRIANGLES, 0, 3);
 	const pixel = new Uint8Array(4);
 	gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
@@ -168,7 +180,7 @@ try {
 	}
 	const range = (a, digits) => `${median(a).toFixed(digits)} [${Math.min(...a).toFixed(digits)}-${Math.max(...a).toFixed(digits)}]`;
 	const total = (s, key) => s.compile[key].map((c, r) => c + s.draw[key][r]);
-	console.log(`${renderer}; ${rounds} round(s), ${lamps} lamp(s); median [min-max] of the rounds; CPU: the GPU process's user + system time`);
+	console.log(`${renderer}; ${rounds} round(s), ${lamps} ${spot ? 'spot' : 'point'} lamp(s)${tier ? `, tier ${tier}` : ''}; median [min-max] of the rounds; CPU: the GPU process's user + system time`);
 	console.log('| shader | compile + link: wall ms / CPU s | first draw (8 x 8): wall ms / CPU s | sum: wall ms / CPU s | ' +
 		'sum / A: median of per-round ratios, wall / CPU | ANGLE\'s translation, chars |');
 	console.log('|---|---|---|---|---|---|');

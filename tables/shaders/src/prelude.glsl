@@ -20,3 +20,9 @@
 #define SLUT_CONST_ARRAY8(name, a0, a1, a2, a3, a4, a5, a6, a7) const float name[8] = float[8](a0, a1, a2, a3, a4, a5, a6, a7)
 
 float slut_inf() { return uintBitsToFloat(0x7F800000u); }
+
+// kernels/slut_compat.h's SLUT_SELECT(c, a, b): c ? a : b with both operands evaluated, a select
+// (ANGLE writes `?:` with computed operands as a branch, which SwiftShader compiles slowly).
+float slut_select(bool c, float a, float b) { return c ? a : b; }
+int slut_select(bool c, int a, int b) { return c ? a : b; }
+bool slut_select(bool c, bool a, bool b) { return c ? a : b; }

@@ -25,3 +25,9 @@ float2 slut_texture_size2d(Texture2D<float> t) {
     t.GetDimensions(width, height);
     return float2(float(width), float(height));
 }
+
+// kernels/slut_compat.h's SLUT_SELECT(c, a, b): c ? a : b with both operands evaluated, a select
+// (ANGLE writes `?:` with computed operands as a branch, which SwiftShader compiles slowly).
+float slut_select(bool c, float a, float b) { return c ? a : b; }
+int slut_select(bool c, int a, int b) { return c ? a : b; }
+bool slut_select(bool c, bool a, bool b) { return c ? a : b; }

@@ -24,6 +24,8 @@
 #define SLUT_FILTER3D(t, x, y, z) slut_wgsl_filter3d(t, t##_sampler, x, y, z)
 #define SLUT_TEXTURE_SIZE2D(t) slut_wgsl_texture_size2d(t)
 #define SLUT_FLOAT3 vec3
+// kernels/slut_compat.h's SLUT_SELECT: the ternary, which the translator writes as select().
+#define SLUT_SELECT(c, a, b) ((c) ? (a) : (b))
 // Constant arrays of kernels/ (SLUT_CONST_ARRAY* there): WGSL const arrays.
 #define SLUT_CONST_ARRAY3(name, a0, a1, a2) const float name[3] = {a0, a1, a2}
 #define SLUT_CONST_ARRAY4(name, a0, a1, a2, a3) const float name[4] = {a0, a1, a2, a3}
