@@ -112,8 +112,7 @@ constexpr double kSlabZ = -9.0, kSlabX0 = 1.2, kSlabX1 = 3.2, kSlabH = 2.0;
 // The far wall closing the street; rays above it go to the sky (infinite length).
 constexpr double kWallZ = -90.0, kWallH = 14.0;
 
-// The street's lamps as point lights: the first picture, which the web demo draws too
-// (examples/web/fog.mjs; its spots are not drawn there yet: docs/SPOT.md).
+// The street's lamps as point lights: the first picture (README's).
 const std::vector<Light> kPointLights = {
     {{-3.5, 5.0, -12.0}, 300.0, {1.0, 0.72, 0.38}},  // sodium lamps along the street
     {{3.8, 5.0, -26.0}, 300.0, {1.0, 0.72, 0.38}},
@@ -127,7 +126,8 @@ const std::vector<Light> kPointLights = {
 // street's middle (glTF falloff from 35° to 55° off the axis), and a car parked across the
 // street at z = −20 m shining its headlights towards the left pavement (12° to 20°, tilted
 // 3.4° down): beams seen from beside. The bare bulb before the slab stays a point light. The
-// other pictures (spots_, hg_, street_).
+// other pictures (spots_, hg_, street_); the web demo (examples/web/fog.mjs) draws spots_ and its
+// test (WebDemoChromium) compares its frame with spots_table.png.
 const std::vector<Light> kSpotLights = {
     {{-3.5, 5.0, -12.0}, 300.0, {1.0, 0.72, 0.38}, {0.35, -1.0, 0.0}, 55.0, 35.0}, // sodium lamps
     {{3.8, 5.0, -26.0}, 300.0, {1.0, 0.72, 0.38}, {-0.35, -1.0, 0.0}, 55.0, 35.0},

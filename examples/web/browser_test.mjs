@@ -3,7 +3,8 @@
 //        [--shaders DIR (the generated .essl / .wgsl snippets; default build/tables/shaders)]
 //        [--backend webgl2|webgpu] [--require]
 // generates the default tables (--format all) into WORK_DIR/tables, renders
-// WORK_DIR/table.png with render_fog (C++, the tables through scatterlut::tables), opens
+// WORK_DIR/spots_table.png with render_fog (C++, the tables through scatterlut::tables: the
+// street's lamps as spots, a car's headlights and a bare bulb, the picture the demo draws), opens
 // the page (?test=1, render_fog's exposure) in Chromium with SwiftShader's WebGL2 (the .essl
 // snippets; the default) or WebGPU (--backend webgpu: the .wgsl snippets, fog_webgpu.mjs), reads
 // the frame back (WORK_DIR/browser_<tier>.png; browser_webgpu_<tier>.png) and requires PSNR >= 40 dB between the two
@@ -54,8 +55,10 @@ const tables = join(work, 'tables');
 mkdirSync(tables, { recursive: true });
 execFileSync(scatterlut, ['generate', '--format', 'all', '--out', tables], { stdio: 'ignore' });
 const out = execFileSync(renderFog, [join(tables, 'airlight_F.slut'), join(tables, 'near_light_E3.slut'), work]).toString();
-const exposure = Number(/^exposure (\S+)/m.exec(out)?.[1]);
-if (!Number.isFinite(exposure)) throw new Error(`render_fog printed no exposure:\n${out}`);
+// render_fog prints a block per picture pair (blank-line separated): the spots_ pair's exposure.
+const spotsBlock = out.split('\n\n').find((b) => /^wrote \S*spots_table\.png/m.test(b)) ?? '';
+const exposure = Number(/^exposure (\S+)/m.exec(spotsBlock)?.[1]);
+if (!Number.isFinite(exposure)) throw new Error(`render_fog printed no exposure for spots_table.png:\n${out}`);
 
 // A PNG (8-bit RGB, the project's encoder) → rows top to bottom.
 function decodePng(bytes) {
@@ -82,7 +85,7 @@ function decodePng(bytes) {
 	}
 	return { width, height, img };
 }
-const cpp = decodePng(readFileSync(join(work, 'table.png')));
+const cpp = decodePng(readFileSync(join(work, 'spots_table.png')));
 const t0 = Date.now();
 // The page's waits guard against a hang, not a speed. Nearly all of the page's time is
 // SwiftShader building the fragment shader (one frame takes 1.5-2 s once built): 11-22 s for

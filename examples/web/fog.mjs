@@ -1,8 +1,11 @@
-// The fog street of examples/render_fog.cpp in the browser: three.js (npm), the default
-// tables as KTX2 textures (airlight_F: 2-D, near_light_E3: 3-D), and the WebGL2 sampling
-// snippets (scatterlut_airlight.essl, scatterlut_nearlight.essl) in one full-screen
-// fragment shader: per pixel, the airlight of every lamp along the view ray and, where the
-// ray meets the wax slab, the near light through its face; Reinhard + sRGB as render_fog.
+// The fog street of examples/render_fog.cpp in the browser (its spots_ picture: the street
+// lamps as spots under shades, a parked car's headlights, a bare bulb before the slab): three.js
+// (npm), the default tables as KTX2 textures (airlight_F: 2-D, near_light_E3: 3-D), and the WebGL2
+// sampling snippets (scatterlut_airlight.essl, scatterlut_nearlight.essl) in one full-screen
+// fragment shader: per pixel, the airlight of every light along the view ray (the snippet's spot
+// entry point, slut_airlight_spot_radiance_points: a point light is a spot whose cones are the
+// whole sphere) and, where the ray meets the wax slab, the near light through its face times the
+// light's glTF falloff towards the point; Reinhard + sRGB as render_fog.
 // Where the browser has WebGPU, the same picture from the WGSL snippets of the same tier
 // (scatterlut_airlight[_tier].wgsl, scatterlut_nearlight[_tier].wgsl) in plain WebGPU:
 // fog_webgpu.mjs.
@@ -23,6 +26,7 @@ import { metadataFromKtx2KeyValue } from './slut.mjs';
 import { startWebGPU } from './fog_webgpu.mjs';
 
 const W = 480, H = 270; // render_fog's image
+const kLights = 8;       // scene.lights (the shaders' arrays)
 const params = new URLSearchParams(location.search);
 const testMode = params.has('test');
 // The snippets' tier: its define, and the airlight table it samples.
@@ -36,10 +40,18 @@ const kTiers = {
 const scene = {
 	eye: new THREE.Vector3(0, 1.7, 0), target: new THREE.Vector3(0, 2.4, -30), fovYDeg: 50,
 	fogSigmaS: 0.04, fogSigmaA: 0.01, slabSigmaS: 5.0, slabSigmaA: 0.2,
-	lights: [ // position (m), I0 (W/sr), colour
-		[-3.5, 5.0, -12.0, 300, 1.0, 0.72, 0.38], [3.8, 5.0, -26.0, 300, 1.0, 0.72, 0.38],
-		[-3.8, 5.0, -45.0, 300, 1.0, 0.72, 0.38], [3.8, 5.0, -70.0, 300, 1.0, 0.72, 0.38],
-		[2.0, 1.2, -8.6, 40, 0.85, 0.9, 1.0], [-2.0, 4.0, 3.0, 200, 1.0, 0.72, 0.38],
+	// render_fog's kSpotLights: position (m), I0 (W/sr; a spot's on its axis), colour, the spot's
+	// axis (light -> lit points, any length), its outer and inner cone half-angles (degrees; glTF
+	// KHR_lights_punctual's falloff between them; 180, 180: a point light).
+	lights: [
+		[-3.5, 5.0, -12.0, 300, 1.0, 0.72, 0.38, 0.35, -1.0, 0.0, 55, 35], // sodium lamps under shades
+		[3.8, 5.0, -26.0, 300, 1.0, 0.72, 0.38, -0.35, -1.0, 0.0, 55, 35],
+		[-3.8, 5.0, -45.0, 300, 1.0, 0.72, 0.38, 0.35, -1.0, 0.0, 55, 35],
+		[3.8, 5.0, -70.0, 300, 1.0, 0.72, 0.38, -0.35, -1.0, 0.0, 55, 35],
+		[2.0, 1.2, -8.6, 40, 0.85, 0.9, 1.0, 0.0, -1.0, 0.0, 180, 180], // bare bulb before the slab
+		[-2.0, 4.0, 3.0, 200, 1.0, 0.72, 0.38, 0.35, -1.0, 0.0, 55, 35], // behind the camera
+		[2.2, 0.75, -19.3, 800, 0.9, 0.95, 1.0, -1.0, -0.06, 0.0, 20, 12], // the parked car's headlights
+		[2.2, 0.75, -20.7, 800, 0.9, 0.95, 1.0, -1.0, -0.06, 0.0, 20, 12],
 	],
 	exposure: Number(params.get('exposure') ?? 2.0),
 };
@@ -76,14 +88,23 @@ uniform ivec3 near_warps;
 uniform vec3 eye, fwd, right, up;
 uniform float tan_half_fov, aspect, exposure;
 uniform vec2 fog_sigma, slab_sigma;         // (sigma_s, sigma_a) in 1/m
-uniform vec4 lights[6];                     // xyz position (m), w I0 (W/sr)
-uniform vec3 light_colors[6];
+uniform vec4 lights[${kLights}];                     // xyz position (m), w I0 (W/sr)
+uniform vec3 light_colors[${kLights}];
+uniform vec3 light_axes[${kLights}];                 // a spot's axis (light -> lit points)
+uniform vec2 light_cones[${kLights}];                // its outer, inner cone half-angle (rad)
 uniform vec2 resolution;
 out vec4 colour;
 
 const float kWallZ = -90.0, kWallH = 14.0;
 const float kSlabZ = -9.0, kSlabX0 = 1.2, kSlabX1 = 3.2, kSlabH = 2.0;
 const vec3 kSlabColor = vec3(1.0, 0.5, 0.25);
+
+// glTF's falloff of light k towards p (render_fog's falloff_towards): kernels/slut_spot.h in
+// the airlight snippet.
+float falloff_towards(int k, vec3 p) {
+	float vers = slut_spot_versine_of(slut_vec3_of(normalize(p - lights[k].xyz)), slut_vec3_of(normalize(light_axes[k])));
+	return slut_spot_falloff(vers, slut_spot_versine(light_cones[k].x), slut_spot_versine(light_cones[k].y));
+}
 
 float tone(float x) { // Reinhard after exposure, then the sRGB curve (render_fog's tone_map)
 	float c = isinf(x) ? 1.0 : x / (1.0 + x);
@@ -118,17 +139,18 @@ void main() {
 		slut_axis_make(near_r.x, near_r.y, near_r.z, near_warps.z, int(near_r.w)));
 	vec3 L = vec3(0.0);
 	float fog_t = fog_sigma.x + fog_sigma.y;
-	for (int k = 0; k < 6; ++k) {
-		L += slut_airlight_radiance_points(airlight_table, air, eye, d, lights[k].xyz, s, fog_sigma.x, fog_sigma.y,
-		                                   lights[k].w) * light_colors[k];
+	for (int k = 0; k < ${kLights}; ++k) {
+		L += slut_airlight_spot_radiance_points(airlight_table, air, eye, d, lights[k].xyz, light_axes[k], light_cones[k].x,
+		                                        light_cones[k].y, s, fog_sigma.x, fog_sigma.y, lights[k].w) * light_colors[k];
 	}
 	if (slab) {
 		vec3 p = eye + s * d;
-		for (int k = 0; k < 6; ++k) {
+		for (int k = 0; k < ${kLights}; ++k) {
 			vec3 rel = lights[k].xyz - p;
 			float att = exp(-fog_t * (length(rel) + s));
 			float Ln = slut_near_light_radiance(near_table, e3, slab_sigma.x, slab_sigma.y, lights[k].w,
-			                                    vec3(0.0, 0.0, 1.0), -d, rel, slut_inf(), 1.0, false) * att;
+			                                    vec3(0.0, 0.0, 1.0), -d, rel, slut_inf(), 1.0, false) * att *
+			           falloff_towards(k, p);
 			L += Ln * light_colors[k] * kSlabColor;
 		}
 	}
@@ -215,6 +237,8 @@ async function main() {
 		fog_sigma: { value: new THREE.Vector2() }, slab_sigma: { value: new THREE.Vector2() },
 		lights: { value: scene.lights.map(() => new THREE.Vector4()) },
 		light_colors: { value: scene.lights.map(() => new THREE.Vector3()) },
+		light_axes: { value: scene.lights.map(() => new THREE.Vector3()) },
+		light_cones: { value: scene.lights.map(() => new THREE.Vector2()) },
 		resolution: { value: new THREE.Vector2(W, H) },
 	};
 	// glslVersion GLSL3: three.js puts "#version 300 es" first; the snippets declare highp.
@@ -241,6 +265,8 @@ async function main() {
 		scene.lights.forEach((l, k) => {
 			uniforms.lights.value[k].set(l[0], l[1], l[2], l[3]);
 			uniforms.light_colors.value[k].set(l[4], l[5], l[6]);
+			uniforms.light_axes.value[k].set(l[7], l[8], l[9]);
+			uniforms.light_cones.value[k].set((l[10] * Math.PI) / 180, (l[11] * Math.PI) / 180);
 		});
 		renderer.render(root, camera);
 	}
@@ -288,7 +314,7 @@ async function controls(update, tierName) {
 	const lampFolder = gui.addFolder('small lamp (in front of the slab)');
 	for (const [k, lo, hi] of [['x', 0, 4], ['y', 0.2, 3], ['z', -8.95, -6], ['I0', 0, 200]])
 		lampFolder.add(lamp, k, lo, hi).onChange(() => {
-			scene.lights[4] = [lamp.x, lamp.y, lamp.z, lamp.I0, 0.85, 0.9, 1.0];
+			scene.lights[4] = [lamp.x, lamp.y, lamp.z, lamp.I0, 0.85, 0.9, 1.0, 0.0, -1.0, 0.0, 180, 180];
 			update();
 		});
 	const media = gui.addFolder('media (1/m)');

@@ -10,11 +10,11 @@
 import { read } from 'three/addons/libs/ktx-parse.module.js';
 import { metadataFromKtx2KeyValue } from './slut.mjs';
 
-const kLamps = 6;
+const kLamps = 8; // fog.mjs's scene.lights
 
-// The scene's numbers (struct Scene below: 15 vec4 and the lamps; WGSL's uniform layout, every
+// The scene's numbers (struct Scene below: 15 vec4 and four per lamp; WGSL's uniform layout, every
 // member 16-byte aligned).
-const kVec4s = 15 + 2 * kLamps;
+const kVec4s = 15 + 4 * kLamps;
 
 // The scene's shader, appended to the snippets: `fast` passes each table's sampler after it,
 // `rational` builds the airlight tiers' table (slut_airlight_table(m_count, t_count)).
@@ -42,6 +42,8 @@ struct Scene {
     pad: vec4<f32>,
     lights: array<vec4<f32>, ${kLamps}>,        // xyz position (m), w I0 (W/sr)
     light_colors: array<vec4<f32>, ${kLamps}>,
+    light_axes: array<vec4<f32>, ${kLamps}>,    // xyz a spot's axis (light -> lit points), -
+    light_cones: array<vec4<f32>, ${kLamps}>,   // its outer, inner cone half-angle (rad), -, -
 }
 @group(0) @binding(0) var airlight_table: texture_2d<f32>;
 @group(0) @binding(1) var near_table: texture_3d<f32>;
@@ -57,6 +59,14 @@ const kSlabH = 2.0;
 const kSlabColor = vec3<f32>(1.0, 0.5, 0.25);
 
 // Reinhard after exposure, then the sRGB curve (render_fog's tone_map); +inf is white.
+// glTF's falloff of light k towards p (render_fog's falloff_towards): kernels/slut_spot.h in
+// the airlight snippet.
+fn falloff_towards(k: i32, p: vec3<f32>) -> f32 {
+    let vers = slut_spot_versine_of(slut_vec3_of(normalize(p - scene.lights[k].xyz)),
+                                    slut_vec3_of(normalize(scene.light_axes[k].xyz)));
+    return slut_spot_falloff(vers, slut_spot_versine(scene.light_cones[k].x), slut_spot_versine(scene.light_cones[k].y));
+}
+
 fn tone(x: f32) -> f32 {
     let c = select(1.0, x / (1.0 + x), x < 3.0e38);
     return select(1.055 * pow(c, 1.0 / 2.4) - 0.055, 12.92 * c, c <= 0.0031308);
@@ -102,8 +112,9 @@ fn fs(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     var L = vec3<f32>(0.0);
     let fog_t = scene.fog_sigma.x + scene.fog_sigma.y;
     for (var k = 0; k < ${kLamps}; k++) {
-        L += slut_airlight_radiance_points(${airArg}, air, eye, d, scene.lights[k].xyz, s, scene.fog_sigma.x,
-                                           scene.fog_sigma.y, scene.lights[k].w) * scene.light_colors[k].xyz;
+        L += slut_airlight_spot_radiance_points(${airArg}, air, eye, d, scene.lights[k].xyz, scene.light_axes[k].xyz,
+                                                scene.light_cones[k].x, scene.light_cones[k].y, s, scene.fog_sigma.x,
+                                                scene.fog_sigma.y, scene.lights[k].w) * scene.light_colors[k].xyz;
     }
     if (slab) {
         let p = eye + s * d;
@@ -111,7 +122,8 @@ fn fs(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
             let rel = scene.lights[k].xyz - p;
             let att = exp(-fog_t * (length(rel) + s));
             let Ln = slut_near_light_radiance(${nearArg}, e3, scene.slab_sigma.x, scene.slab_sigma.y, scene.lights[k].w,
-                                              vec3<f32>(0.0, 0.0, 1.0), -d, rel, slut_inf(), 1.0, false) * att;
+                                              vec3<f32>(0.0, 0.0, 1.0), -d, rel, slut_inf(), 1.0, false) * att *
+                     falloff_towards(k, p);
             L += Ln * scene.light_colors[k].xyz * kSlabColor;
         }
     }
@@ -217,7 +229,12 @@ export async function startWebGPU(adapter, canvas, W, H, asked, tiers) {
 		put(6, [...v.eye, 0]); put(7, [...v.fwd, 0]); put(8, [...v.right, 0]); put(9, [...v.up, 0]);
 		put(10, [v.tanHalfFov, W / H, v.exposure, 0]); put(11, [W, H, 0, 0]);
 		put(12, [v.fogSigmaS, v.fogSigmaA, 0, 0]); put(13, [v.slabSigmaS, v.slabSigmaA, 0, 0]);
-		v.lights.forEach((l, k) => { put(15 + k, [l[0], l[1], l[2], l[3]]); put(15 + kLamps + k, [l[4], l[5], l[6], 0]); });
+		v.lights.forEach((l, k) => {
+			put(15 + k, [l[0], l[1], l[2], l[3]]);
+			put(15 + kLamps + k, [l[4], l[5], l[6], 0]);
+			put(15 + 2 * kLamps + k, [l[7], l[8], l[9], 0]);
+			put(15 + 3 * kLamps + k, [(l[10] * Math.PI) / 180, (l[11] * Math.PI) / 180, 0, 0]);
+		});
 		device.queue.writeBuffer(uniform, 0, f);
 		render(context ? context.getCurrentTexture() : offscreen);
 	}
