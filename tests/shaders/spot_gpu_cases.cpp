@@ -216,6 +216,15 @@ std::vector<SpotCase> make_cases() {
         fill(c, std::string("typical ") + spot_geometry::kind_name(k % 4));
         out.push_back(c);
     }
+    // The anisotropic snippet's RGB entry (slut_airlight_hg_spot_radiance_points_rgb): the first 60
+    // typical rays again, the query's medium in channel mode − 3 and other media in the other two
+    // (test_shaders_spot's body); every other body answers them with the spot alone.
+    for (int k = 0; k < 60; ++k) {
+        SpotCase c = out[static_cast<size_t>(k)]; // the same inputs, references and tolerances
+        c.gpu[0] = static_cast<float>(3 + k % 3);
+        c.label = "rgb channel " + std::to_string(k % 3) + ": " + c.label;
+        out.push_back(c);
+    }
     for (int k = 0; k < 200; ++k) { // test_spot's population: any cone, hard cones, wide ones
         SpotCase c;
         c.gpu = record(spot_geometry::random_geometry(rng, k).q);

@@ -76,8 +76,9 @@ Params test_params(int k) {
     return p;
 }
 
-// The per-query bodies: mode 1 the spot, mode 2 the point light on the same ray (the GLSL and HLSL
-// runs). The WebGPU cases take the spot alone (spot_only): on Chromium's SwiftShader a module
+// The per-query bodies: mode 1 the spot, mode 2 the point light on the same ray, modes 3–5 the
+// anisotropic snippet's RGB spot entry with the query's medium in channel mode − 3 (the GLSL and
+// HLSL runs; the isotropic body answers them with the spot). The WebGPU cases take the spot alone (spot_only): on Chromium's SwiftShader a module
 // whose test_eval calls both the spot and the point light returned wrong values for every query,
 // spot and point alike (not chased down: each alone agrees; the point light is the WGSL tests'
 // own subject elsewhere).
@@ -120,6 +121,16 @@ float test_eval(int i) {
         s += R"slsl(    if (int(q[b]) == 2)
         return slut_airlight_hg_radiance_points(SLUT_TEX_ARG(slut_test_table), t, viewer, dir, light, q[b + 15],
                                                 q[b + 16], q[b + 17], q[b + 18]);
+    if (int(q[b]) >= 3) { // the RGB entry: the query's medium in channel c, other media in the others
+        int c = int(q[b]) - 3;
+        float s = q[b + 16], a = q[b + 17];
+        SLUT_FLOAT3 sigma_s = SLUT_FLOAT3((c == 0) ? s : 0.5 * s, (c == 1) ? s : 2.0 * s, (c == 2) ? s : 0.0);
+        SLUT_FLOAT3 sigma_a = SLUT_FLOAT3((c == 0) ? a : 3.0 * a, (c == 1) ? a : 0.1, (c == 2) ? a : 0.0);
+        SLUT_FLOAT3 L = slut_airlight_hg_spot_radiance_points_rgb(SLUT_TEX_ARG(slut_test_table), t, viewer, dir, light,
+                                                                  SLUT_FLOAT3(q[b + 10], q[b + 11], q[b + 12]), q[b + 13],
+                                                                  q[b + 14], q[b + 15], sigma_s, sigma_a, q[b + 18]);
+        return (c == 0) ? L.x : ((c == 1) ? L.y : L.z);
+    }
 )slsl";
     return s + R"slsl(    return slut_airlight_hg_spot_radiance_points(SLUT_TEX_ARG(slut_test_table), t, viewer, dir, light,
                                                  SLUT_FLOAT3(q[b + 10], q[b + 11], q[b + 12]), q[b + 13], q[b + 14],
