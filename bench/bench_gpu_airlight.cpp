@@ -199,20 +199,8 @@ int run_airlight_scene(const gpu_harness::Gl &gl, const Options &opt) {
 
     const std::vector<float> geo = make_scene(opt.width, opt.height);
     Passes passes(gl, opt.width, opt.height, geo);
-    if (!passes.complete()) {
-        std::fprintf(stderr, "scatterlut_gpu_bench: the R32F render target is not complete\n");
-        return 1;
-    }
-    const std::string error = passes.build(methods);
-    if (!error.empty()) {
-        std::fprintf(stderr, "scatterlut_gpu_bench: %s\n", error.c_str());
-        return 1;
-    }
-    const std::vector<std::vector<double>> round_ms = passes.time_rounds(methods, opt.rounds, opt.frames);
-    if (gl.glGetError() != GL_NO_ERROR) {
-        std::fprintf(stderr, "scatterlut_gpu_bench: OpenGL error during the timed frames\n");
-        return 1;
-    }
+    std::vector<std::vector<double>> round_ms;
+    if (!build_and_time(gl, passes, methods, opt, &round_ms)) return 1;
 
     // The sampled pixels and their exact radiance; which path each takes.
     const size_t pixels = static_cast<size_t>(opt.width) * opt.height;

@@ -142,12 +142,8 @@ int run_nearlight_scene(const gpu_harness::Gl &gl, const Options &opt) {
 
     const std::vector<float> px = make_scene(opt.width, opt.height);
     Passes passes(gl, opt.width, opt.height, px);
-    const std::string error = passes.complete() ? passes.build(methods) : "the R32F render target is not complete";
-    if (!error.empty()) {
-        std::fprintf(stderr, "scatterlut_gpu_bench: %s\n", error.c_str());
-        return 1;
-    }
-    const std::vector<std::vector<double>> round_ms = passes.time_rounds(methods, opt.rounds, opt.frames);
+    std::vector<std::vector<double>> round_ms;
+    if (!build_and_time(gl, passes, methods, opt, &round_ms)) return 1;
 
     // The sampled pixels the table covers, with their exact radiance.
     const size_t pixels = static_cast<size_t>(opt.width) * opt.height;

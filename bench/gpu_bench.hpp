@@ -73,6 +73,24 @@ inline ErrorStats relative_errors(const std::vector<float> &image, const std::ve
 }
 
 // Index of the method called `name` (methods.size() if none).
+// Builds every method's program on `passes` and times them (Passes::time_rounds): the rounds'
+// frame times in ms per method in *round_ms; false after printing why not (the render target, a
+// shader, an OpenGL error during the frames).
+inline bool build_and_time(const gpu_harness::Gl &gl, const Passes &passes, std::vector<Method> &methods, const Options &opt,
+                           std::vector<std::vector<double>> *round_ms) {
+    const std::string error = passes.complete() ? passes.build(methods) : "the R32F render target is not complete";
+    if (!error.empty()) {
+        std::fprintf(stderr, "scatterlut_gpu_bench: %s\n", error.c_str());
+        return false;
+    }
+    *round_ms = passes.time_rounds(methods, opt.rounds, opt.frames);
+    if (gl.glGetError() != GL_NO_ERROR) {
+        std::fprintf(stderr, "scatterlut_gpu_bench: OpenGL error during the timed frames\n");
+        return false;
+    }
+    return true;
+}
+
 inline size_t index_of(const std::vector<Method> &methods, const std::string &name) {
     return static_cast<size_t>(std::find_if(methods.begin(), methods.end(),
                                             [&](const Method &m) { return m.name == name; }) -

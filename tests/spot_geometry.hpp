@@ -65,6 +65,19 @@ struct Ranges {
     double length_max = 40.2;                     // finite rays' length, m
 };
 
+// glTF-like spots (docs/SPOT.md's "typical cones"): θ_o in [0.2, 1.4] rad, bands 0.05–0.4 rad
+// wide, fog up to σ_t 0.35/m.
+inline Ranges typical_ranges() {
+    Ranges typical;
+    typical.sigma_s_max = 0.3;
+    typical.sigma_a_max = 0.05;
+    typical.outer_min = 0.2;
+    typical.outer_max = 1.4;
+    typical.band_min = 0.05;
+    typical.band_max = 0.4;
+    return typical;
+}
+
 struct Geometry {
     SpotQuery q;
     double g = 0; // a Henyey–Greenstein g for the tests that take one, in [−0.3, 0.85]

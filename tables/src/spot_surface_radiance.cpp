@@ -39,22 +39,9 @@ void check_spot_light(const SpotLight &l) {
             "spot light: intensity must be finite and >= 0 (W/sr)");
 }
 
-// The point light of the same position and on-axis intensity.
-SurfaceLighting point_lighting(const SpotSurfaceLighting &s) {
-    SurfaceLighting p;
-    for (int i = 0; i < 3; ++i) {
-        p.point_m[i] = s.point_m[i];
-        p.normal[i] = s.normal[i];
-        p.viewer_m[i] = s.viewer_m[i];
-        p.light_m[i] = s.light.position_m[static_cast<size_t>(i)];
-    }
-    p.intensity_W_per_sr = s.light.intensity_W_per_sr;
-    return p;
-}
-
 void check(const SpotSurfaceLighting &s, double sigma_s, double sigma_a, const SurfaceMaterial &m) {
     check_spot_light(s.light);
-    check_surface_lighting(point_lighting(s), sigma_s, sigma_a, m);
+    check_surface_lighting(point_light_of(s), sigma_s, sigma_a, m);
 }
 
 // Each product only where its factor is > 0 (an infinite term times 0 stays 0).
@@ -97,6 +84,18 @@ void check_channels(const Rgb &sigma_s, const Rgb &sigma_a) {
 
 } // namespace
 
+SurfaceLighting point_light_of(const SpotSurfaceLighting &s) {
+    SurfaceLighting p;
+    for (int i = 0; i < 3; ++i) {
+        p.point_m[i] = s.point_m[i];
+        p.normal[i] = s.normal[i];
+        p.viewer_m[i] = s.viewer_m[i];
+        p.light_m[i] = s.light.position_m[static_cast<size_t>(i)];
+    }
+    p.intensity_W_per_sr = s.light.intensity_W_per_sr;
+    return p;
+}
+
 double spot_falloff_at_point(const SpotLight &light, const double point_m[3]) {
     check_spot_light(light);
     require(std::isfinite(point_m[0]) && std::isfinite(point_m[1]) && std::isfinite(point_m[2]),
@@ -110,7 +109,7 @@ double spot_falloff_at_point(const SpotLight &light, const double point_m[3]) {
 SurfaceRadiance spot_surface_radiance(const SurfaceTables &tables, const SpotSurfaceLighting &s, double sigma_s_per_m,
                                       double sigma_a_per_m, const SurfaceMaterial &m, SpotScatterModel model) {
     check(s, sigma_s_per_m, sigma_a_per_m, m);
-    const SurfaceRadiance point = surface_radiance(tables, point_lighting(s), sigma_s_per_m, sigma_a_per_m, m);
+    const SurfaceRadiance point = surface_radiance(tables, point_light_of(s), sigma_s_per_m, sigma_a_per_m, m);
     const double f = spot_falloff_at_point(s.light, s.point_m);
     SurfaceRadiance r;
     r.diffuse_direct = times(point.diffuse_direct, f);

@@ -129,14 +129,7 @@ void run_population(const char *name, const spot_geometry::Ranges &R, int n, uns
 }
 
 TEST(SpotRule, AgainstTheExactAirlightOnTypicalSoftCones) {
-    // glTF-like spots: θ_o in [0.2, 1.4] rad, bands 0.05–0.4 rad wide, fog up to σ_t 0.35/m.
-    spot_geometry::Ranges typical;
-    typical.sigma_s_max = 0.3;
-    typical.sigma_a_max = 0.05;
-    typical.outer_min = 0.2;
-    typical.outer_max = 1.4;
-    typical.band_min = 0.05;
-    typical.band_max = 0.4;
+    const spot_geometry::Ranges typical = spot_geometry::typical_ranges();
     run_population("typical cones, g = 0", typical, 1200, 71, 0.0, 400, 40);
     run_population("typical cones, g = 0.85", typical, 1200, 72, 0.85, 400, 40);
     run_population("typical cones, g = -0.5", typical, 600, 73, -0.5, 200, 20);

@@ -104,18 +104,6 @@ SpotSurfaceLighting random_lighting(Random &r, double outer, double inner, doubl
     return s;
 }
 
-SurfaceLighting as_point_light(const SpotSurfaceLighting &s) {
-    SurfaceLighting p;
-    for (int i = 0; i < 3; ++i) {
-        p.point_m[i] = s.point_m[i];
-        p.normal[i] = s.normal[i];
-        p.viewer_m[i] = s.viewer_m[i];
-        p.light_m[i] = s.light.position_m[static_cast<size_t>(i)];
-    }
-    p.intensity_W_per_sr = s.light.intensity_W_per_sr;
-    return p;
-}
-
 SurfaceMaterial material(double kd = 0.7, double ks = 0.4) {
     SurfaceMaterial m;
     m.diffuse_albedo = kd;
@@ -135,7 +123,7 @@ TEST(SpotSurfaceRadiance, ThePointLightsTermsTimesTheFalloff) {
         const double sigma_s = r.u(0.0, 0.3), sigma_a = r.u(0.0, 0.1);
         const SurfaceRadiance got =
             spot_surface_radiance(tables(), s, sigma_s, sigma_a, material(), SpotScatterModel::falloff);
-        const SurfaceRadiance point = surface_radiance(tables(), as_point_light(s), sigma_s, sigma_a, material());
+        const SurfaceRadiance point = surface_radiance(tables(), point_light_of(s), sigma_s, sigma_a, material());
         const double f = gltf_falloff(s.light, s.point_m);
         EXPECT_NEAR(spot_falloff_at_point(s.light, s.point_m), f, 1e-12) << k;
         (f > 0.0 ? lit : unlit)++;
@@ -161,7 +149,7 @@ TEST(SpotSurfaceRadiance, PointLightLimit) {
         const SpotSurfaceLighting s = random_lighting(r, kPi, kPi, r.u(0.0, kPi), r.u(0.5, 10.0));
         const double sigma_s = r.u(0.01, 0.3), sigma_a = r.u(0.0, 0.1);
         const SurfaceRadiance a = spot_surface_radiance(tables(), s, sigma_s, sigma_a, material(), SpotScatterModel::falloff);
-        const SurfaceRadiance b = surface_radiance(tables(), as_point_light(s), sigma_s, sigma_a, material());
+        const SurfaceRadiance b = surface_radiance(tables(), point_light_of(s), sigma_s, sigma_a, material());
         EXPECT_EQ(a.total(), b.total()) << k;
         // The thin-beam model never exceeds the point light's terms.
         const SurfaceRadiance thin = spot_surface_radiance(tables(), s, sigma_s, sigma_a, material());
@@ -170,7 +158,7 @@ TEST(SpotSurfaceRadiance, PointLightLimit) {
         EXPECT_EQ(thin.diffuse_direct, b.diffuse_direct) << k;
         if (k % 4 != 0) continue; // the exact reference: a few (tenths of a second each)
         const SurfaceRadiance e = spot_surface_radiance_exact(s, sigma_s, sigma_a, material());
-        const SurfaceRadiance p = surface_radiance_exact(as_point_light(s), sigma_s, sigma_a, material());
+        const SurfaceRadiance p = surface_radiance_exact(point_light_of(s), sigma_s, sigma_a, material());
         EXPECT_LE(rel(e.diffuse_scattered, p.diffuse_scattered), 5e-8) << k;
         EXPECT_LE(rel(e.specular_scattered, p.specular_scattered), 5e-8) << k;
         EXPECT_EQ(e.diffuse_direct, p.diffuse_direct) << k;
@@ -185,7 +173,7 @@ struct FactorError {
     double diffuse, specular; // approximation / exact − 1
 };
 FactorError factor_error(const SpotSurfaceLighting &s, double sigma_s, double sigma_a) {
-    const SurfaceRadiance point = surface_radiance_exact(as_point_light(s), sigma_s, sigma_a, material());
+    const SurfaceRadiance point = surface_radiance_exact(point_light_of(s), sigma_s, sigma_a, material());
     const SurfaceRadiance exact = spot_surface_radiance_exact(s, sigma_s, sigma_a, material());
     const double f = spot_falloff_at_point(s.light, s.point_m);
     return {f * point.diffuse_scattered / exact.diffuse_scattered - 1.0,
@@ -194,7 +182,7 @@ FactorError factor_error(const SpotSurfaceLighting &s, double sigma_s, double si
 
 // The thin-beam model's E_ss over the exact one (the point light's G exact, as above).
 double thin_over_exact(const SpotSurfaceLighting &s, double sigma_s, double sigma_a) {
-    const SurfaceRadiance point = surface_radiance_exact(as_point_light(s), sigma_s, sigma_a, material(0.7, 0.0));
+    const SurfaceRadiance point = surface_radiance_exact(point_light_of(s), sigma_s, sigma_a, material(0.7, 0.0));
     const SurfaceRadiance exact = spot_surface_radiance_exact(s, sigma_s, sigma_a, material(0.7, 0.0));
     SpotSurfacePoint q;
     q.sigma_s_per_m = sigma_s;
@@ -334,7 +322,7 @@ TEST(SpotSurfaceThinBeam, IsTheSmallerOfThePointLightsAndTheThinBeamsTerm) {
         const SpotSurfaceLighting s = random_lighting(r, outer, inner, r.u(0.0, std::min(kPi, 2.0 * outer)), r.u(0.5, 20));
         const double sigma_s = r.u(0.001, 0.2), sigma_a = r.u(0.0, 0.05);
         const SurfaceRadiance got = spot_surface_radiance(tables(), s, sigma_s, sigma_a, material());
-        const SurfaceRadiance point = surface_radiance(tables(), as_point_light(s), sigma_s, sigma_a, material());
+        const SurfaceRadiance point = surface_radiance(tables(), point_light_of(s), sigma_s, sigma_a, material());
         const V p{s.point_m[0], s.point_m[1], s.point_m[2]}, n{s.normal[0], s.normal[1], s.normal[2]};
         const V L{s.light.position_m[0], s.light.position_m[1], s.light.position_m[2]};
         const V v{s.viewer_m[0], s.viewer_m[1], s.viewer_m[2]};
@@ -395,7 +383,7 @@ TEST(SpotSurfaceThinBeam, HoldsForThinMediaAndNarrowBeams) {
         const double outer = r.u(0.05, 1.0), inner = (k % 3 == 0) ? outer : r.u(0.0, outer);
         const double D = r.u(1.0, 20.0), sigma_t = r.u(0.001, 0.02) / (outer * D);
         const SpotSurfaceLighting s = random_lighting(r, outer, inner, r.u(0.0, std::min(kPi, 2.0 * outer)), D);
-        const SurfaceRadiance point = surface_radiance_exact(as_point_light(s), 0.9 * sigma_t, 0.1 * sigma_t, material(0.7, 0.0));
+        const SurfaceRadiance point = surface_radiance_exact(point_light_of(s), 0.9 * sigma_t, 0.1 * sigma_t, material(0.7, 0.0));
         const SurfaceRadiance exact = spot_surface_radiance_exact(s, 0.9 * sigma_t, 0.1 * sigma_t, material(0.7, 0.0));
         const double ratio = thin_over_exact(s, 0.9 * sigma_t, 0.1 * sigma_t);
         const double scaled = std::fabs(ratio - 1.0) * exact.diffuse_scattered / point.diffuse_scattered;

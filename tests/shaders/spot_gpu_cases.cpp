@@ -139,19 +139,12 @@ std::array<float, kFloats> record(const SpotQuery &q, int mode = 1) {
     return g;
 }
 
-// Degenerate inputs on exact float geometry: the beam down the z axis from (5, 0, 4).
+// Degenerate inputs on exact float geometry: the tests' base soft cone (the beam down the z
+// axis from (5, 0, 4)) with its angles float's.
 std::vector<std::pair<SpotQuery, std::string>> degenerate_queries() {
-    SpotQuery b;
-    b.sigma_s_per_m = 0.1;
-    b.sigma_a_per_m = 0.05;
-    b.viewer_m = {0, 0, 0};
-    b.view_dir = {1, 0, 0};
-    b.length_m = 20;
-    b.light.position_m = {5, 0, 4};
-    b.light.direction = {0, 0, -1};
+    SpotQuery b = spot_geometry::base_query();
     b.light.outer_angle_rad = 0.6f;
     b.light.inner_angle_rad = 0.3f;
-    b.light.intensity_W_per_sr = 3;
     std::vector<std::pair<SpotQuery, std::string>> out;
     auto add = [&](SpotQuery q, const char *what) { out.push_back({q, what}); };
     add(b, "soft cone crossed");
@@ -203,13 +196,7 @@ std::vector<std::pair<SpotQuery, std::string>> degenerate_queries() {
 std::vector<SpotCase> make_cases() {
     std::vector<SpotCase> out;
     std::mt19937_64 rng(20261205);
-    spot_geometry::Ranges typical; // glTF-like soft cones (docs/SPOT.md)
-    typical.sigma_s_max = 0.3;
-    typical.sigma_a_max = 0.05;
-    typical.outer_min = 0.2;
-    typical.outer_max = 1.4;
-    typical.band_min = 0.05;
-    typical.band_max = 0.4;
+    const spot_geometry::Ranges typical = spot_geometry::typical_ranges();
     for (int k = 0; k < 500; ++k) {
         SpotCase c;
         c.gpu = record(spot_geometry::random_geometry(rng, k, typical).q);

@@ -98,6 +98,10 @@ struct SpotSurfaceLighting {
     SpotLight light;                // position (≠ P), axis, θ_o ≥ θ_i, I0 on the axis
 };
 
+// The point light of the same position and on-axis intensity I0 (the lighting whose terms
+// spot_surface_radiance scales).
+SurfaceLighting point_light_of(const SpotSurfaceLighting &s);
+
 // f(θ_P) ∈ [0, 1]: glTF's falloff of the direction from the light to `point_m`: spot_falloff
 // (scatterlut/spot.hpp) for a surface point, which must not sit on the light
 // (std::invalid_argument for a bad light or point).
